@@ -1,0 +1,115 @@
+#!/usr/bin/env bash
+# Self-check of the slicing harness (bench/slicers).  Needs CuraEngine, prusa-slicer,
+# /usr/bin/python3 and the Cura definitions (fetched by fetch_cura_defs.sh if absent).
+#
+# Slices:
+#   * a 20 mm cube (made here) with both slicers, no support: must be within 15% of the
+#     analytic volume for 2 walls, 4+4 top/bottom layers and 20% infill (3.74 g of PLA);
+#   * /work/shared/models/bridge.stl (40 mm deck at z=5 over two pillars, 50x10x8 mm) with
+#     Cura none/normal/tree and PrusaSlicer none/grid: grams > 0, time > 0, and with support
+#     >= without (grams and time);
+#   * bridge.stl + a filler block (the space under the deck) given as TWO STLs: they are merged
+#     into one mesh and must slice like a solid 50x10x8 box (pitfall 5), in both slicers.
+# Prints the numbers, then "N passed, N failed"; exits 1 if any check failed.
+set -uo pipefail
+
+HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+PY=/usr/bin/python3
+export PYTHONDONTWRITEBYTECODE=1
+MODELS="${CLEVER_MODELS_DIR:-$HERE/../../../shared/models}"
+[[ -f "$MODELS/bridge.stl" ]] || MODELS=/work/shared/models
+BRIDGE="$MODELS/bridge.stl"
+WORK="$(mktemp -d "${TMPDIR:-/tmp}/clever-selftest.XXXXXX")"
+trap 'rm -rf "$WORK"' EXIT
+
+"$HERE/fetch_cura_defs.sh" >/dev/null || { echo "cannot obtain the Cura definitions"; exit 1; }
+[[ -f "$BRIDGE" ]] || { echo "missing $BRIDGE"; exit 1; }
+
+# Test meshes: 20 mm cube, filler block under the bridge deck, solid 50x10x8 box.
+"$PY" - "$WORK" "$HERE" <<'EOF'
+import sys
+sys.path.insert(0, sys.argv[2])
+import slice as s
+work = sys.argv[1]
+def box(x0, y0, z0, x1, y1, z1):
+    v = [(x0,y0,z0),(x1,y0,z0),(x1,y1,z0),(x0,y1,z0),(x0,y0,z1),(x1,y0,z1),(x1,y1,z1),(x0,y1,z1)]
+    f = [(0,2,1),(0,3,2),(4,5,6),(4,6,7),(0,1,5),(0,5,4),(1,2,6),(1,6,5),(2,3,7),(2,7,6),(3,0,4),(3,4,7)]
+    return [tuple(v[i] for i in t) for t in f]
+s.write_stl(work + "/cube20.stl", box(0, 0, 0, 20, 20, 20))
+# bridge.stl: pillars x 75..80 and 120..125, deck z 5..8, y 84.5..94.5
+s.write_stl(work + "/filler.stl", box(80, 84.5, 0, 120, 94.5, 5))
+s.write_stl(work + "/solid_box.stl", box(75, 84.5, 0, 125, 94.5, 8))
+EOF
+
+run() {  # name slicer support files...
+  local name="$1" slicer="$2" support="$3"; shift 3
+  if ! "$PY" "$HERE/slice.py" --slicer "$slicer" --support "$support" --json \
+       --out-dir "$WORK/$name" "$@" > "$WORK/$name.json" 2> "$WORK/$name.err"; then
+    echo "FAILED to slice $name:"; tail -20 "$WORK/$name.err"
+    echo '{}' > "$WORK/$name.json"
+  fi
+}
+
+run cube_cura    cura  none   "$WORK/cube20.stl"
+run cube_prusa   prusa none   "$WORK/cube20.stl"
+run bridge_cura_none    cura  none   "$BRIDGE"
+run bridge_cura_normal  cura  normal "$BRIDGE"
+run bridge_cura_tree    cura  tree   "$BRIDGE"
+run bridge_prusa_none   prusa none   "$BRIDGE"
+run bridge_prusa_grid   prusa grid   "$BRIDGE"
+run merged_cura   cura  none "$BRIDGE" "$WORK/filler.stl"
+run box_cura      cura  none "$WORK/solid_box.stl"
+run merged_prusa  prusa none "$BRIDGE" "$WORK/filler.stl"
+run box_prusa     prusa none "$WORK/solid_box.stl"
+
+"$PY" - "$WORK" <<'EOF'
+import json, sys, os
+work = sys.argv[1]
+def load(n):
+    with open(os.path.join(work, n + ".json")) as f:
+        return json.load(f)
+R = {n: load(n) for n in ["cube_cura", "cube_prusa", "bridge_cura_none", "bridge_cura_normal",
+                          "bridge_cura_tree", "bridge_prusa_none", "bridge_prusa_grid",
+                          "merged_cura", "box_cura", "merged_prusa", "box_prusa"]}
+print("%-20s %8s %8s %10s %9s" % ("run", "grams", "minutes", "mm3", "slice_s"))
+for n, r in R.items():
+    if r:
+        print("%-20s %8.3f %8.1f %10.1f %9.3f" % (n, r["grams"], r["print_time_s"] / 60,
+                                                 r["filament_mm3"], r["slice_seconds"]))
+    else:
+        print("%-20s   (failed)" % n)
+passed = failed = 0
+def check(ok, what):
+    global passed, failed
+    print(("PASS  " if ok else "FAIL  ") + what)
+    if ok: passed += 1
+    else: failed += 1
+def g(n, k):
+    return R[n].get(k, float("nan"))
+# Analytic 20 mm cube: 2 walls of 0.4 (outer 20x20, inner 18.4x18.4), 4+4 layers of 0.2 mm,
+# 20% infill in the 18.4 x 18.4 x 18.4 core.
+core = 18.4 * 18.4
+cube_mm3 = (400 - core) * 20 + 8 * 0.2 * core + 0.20 * core * 18.4
+cube_g = cube_mm3 * 1.24e-3
+for n in ("cube_cura", "cube_prusa"):
+    check(abs(g(n, "grams") - cube_g) <= 0.15 * cube_g,
+          "%s: %.2f g within 15%% of the analytic %.2f g" % (n, g(n, "grams"), cube_g))
+    check(g(n, "print_time_s") > 0, "%s: print time > 0" % n)
+for n in [k for k in R if k.startswith("bridge_")]:
+    check(g(n, "grams") > 0 and g(n, "print_time_s") > 0 and g(n, "filament_mm3") > 0,
+          "%s: grams, time, volume > 0" % n)
+for base, sup in (("bridge_cura_none", "bridge_cura_normal"), ("bridge_cura_none", "bridge_cura_tree"),
+                  ("bridge_prusa_none", "bridge_prusa_grid")):
+    check(g(sup, "grams") >= g(base, "grams") and g(sup, "print_time_s") >= g(base, "print_time_s"),
+          "%s >= %s (%.3f g >= %.3f g, %.1f >= %.1f min)" % (sup, base, g(sup, "grams"), g(base, "grams"),
+                                                           g(sup, "print_time_s") / 60, g(base, "print_time_s") / 60))
+    # the support must be a real amount, not noise: the space under the deck is ~2000 mm3
+    check(g(sup, "filament_mm3") - g(base, "filament_mm3") > 100,
+          "%s adds > 100 mm3 of support (+%.0f mm3)" % (sup, g(sup, "filament_mm3") - g(base, "filament_mm3")))
+for m, b in (("merged_cura", "box_cura"), ("merged_prusa", "box_prusa")):
+    check(abs(g(m, "filament_mm3") - g(b, "filament_mm3")) <= 0.02 * g(b, "filament_mm3"),
+          "%s (bridge.stl + filler.stl, 2 files) slices like the solid box: %.0f vs %.0f mm3"
+          % (m, g(m, "filament_mm3"), g(b, "filament_mm3")))
+print("selftest: %d passed, %d failed" % (passed, failed))
+sys.exit(1 if failed else 0)
+EOF

@@ -1,0 +1,397 @@
+#!/usr/bin/python3
+"""Slice STL(s) with CuraEngine 4.13 or PrusaSlicer 2.5 and report grams, print time, volume.
+
+usage: slice.py --slicer cura|prusa --support none|normal|tree|grid [--out-dir DIR] [--json]
+                [--profile profile.json] [--scale S] [--set KEY=VALUE ...] [--timeout SEC]
+                model.stl [more.stl ...]
+
+* cura:  --support none | normal (lines, 15%) | tree (support_structure=tree)
+* prusa: --support none | grid   (support_material_style=grid, rectilinear lines)
+
+Several STLs are merged into ONE mesh (one STL file, one object / mesh group):
+a model plus a separate support STL slice together, and both slicers union
+overlapping closed bodies (pitfall 5).  The merged mesh is scaled by --scale,
+centred in XY on the bed and put on it (min z = 0) before slicing.
+
+Output: one line per field, or with --json one JSON object:
+  {slicer, support, models, grams, print_time_s, filament_mm3, slice_seconds,
+   filament_mm, scale, model_size_mm, overrides, out_dir}
+grams for Cura = filament_mm3 * density (1.24 g/cm3 = 1.24e-3 g/mm3); for
+PrusaSlicer the footer's "; filament used [g]".  slice_seconds is the wall time
+of the slicer process alone.  On a slicer failure: exit 1 and the tail of the
+slicer's stderr on our stderr; on bad usage: exit 2.
+"""
+import argparse
+import json
+import math
+import os
+import re
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+sys.dont_write_bytecode = True  # keep bench/slicers free of __pycache__
+import cura_settings  # noqa: E402
+
+CURA_BIN = os.environ.get("CURA_ENGINE", "CuraEngine")
+PRUSA_BIN = os.environ.get("PRUSA_SLICER", "prusa-slicer")
+SUPPORT_MODES = {"cura": ("none", "normal", "tree"), "prusa": ("none", "grid")}
+
+
+class SliceError(RuntimeError):
+    pass
+
+
+# --------------------------------------------------------------------------
+# STL I/O
+# --------------------------------------------------------------------------
+
+def read_stl(path):
+    """Return a list of triangles ((x,y,z),(x,y,z),(x,y,z)); binary or ASCII STL."""
+    with open(path, "rb") as f:
+        data = f.read()
+    if len(data) >= 84:
+        n = struct.unpack_from("<I", data, 80)[0]
+        if 84 + 50 * n == len(data):
+            tris = []
+            off = 84
+            for _ in range(n):
+                v = struct.unpack_from("<12f", data, off)
+                tris.append((v[3:6], v[6:9], v[9:12]))
+                off += 50
+            return tris
+    text = data.decode("ascii", errors="replace")
+    if "facet" not in text:
+        raise SliceError("%s: neither a binary STL (size mismatch) nor an ASCII STL" % path)
+    nums = re.findall(r"vertex\s+(\S+)\s+(\S+)\s+(\S+)", text)
+    if len(nums) % 3:
+        raise SliceError("%s: ASCII STL with a vertex count that is not a multiple of 3" % path)
+    verts = [tuple(float(c) for c in v) for v in nums]
+    return [tuple(verts[i:i + 3]) for i in range(0, len(verts), 3)]
+
+
+def write_stl(path, tris, name="clever-support merged"):
+    with open(path, "wb") as f:
+        f.write(("binary STL: " + name).encode("ascii")[:80].ljust(80, b" "))
+        f.write(struct.pack("<I", len(tris)))
+        for a, b, c in tris:
+            ux, uy, uz = b[0] - a[0], b[1] - a[1], b[2] - a[2]
+            vx, vy, vz = c[0] - a[0], c[1] - a[1], c[2] - a[2]
+            nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+            ln = math.sqrt(nx * nx + ny * ny + nz * nz) or 1.0
+            f.write(struct.pack("<12fH", nx / ln, ny / ln, nz / ln, *a, *b, *c, 0))
+
+
+def merge_and_place(paths, out_path, bed, scale=1.0):
+    """Merge STLs into one mesh, scale, centre in XY on the bed, min z = 0."""
+    tris = []
+    for p in paths:
+        tris.extend(read_stl(p))
+    if not tris:
+        raise SliceError("no triangles in %s" % ", ".join(paths))
+    xs = [v[0] for t in tris for v in t]
+    ys = [v[1] for t in tris for v in t]
+    zs = [v[2] for t in tris for v in t]
+    cx = (min(xs) + max(xs)) / 2.0 * scale
+    cy = (min(ys) + max(ys)) / 2.0 * scale
+    mz = min(zs) * scale
+    dx, dy, dz = bed[0] / 2.0 - cx, bed[1] / 2.0 - cy, -mz
+    placed = [tuple((v[0] * scale + dx, v[1] * scale + dy, v[2] * scale + dz) for v in t) for t in tris]
+    write_stl(out_path, placed)
+    size = [(max(xs) - min(xs)) * scale, (max(ys) - min(ys)) * scale, (max(zs) - min(zs)) * scale]
+    if size[0] > bed[0] or size[1] > bed[1] or size[2] > bed[2]:
+        raise SliceError("model %.1f x %.1f x %.1f mm does not fit the %gx%gx%g bed (use --scale)"
+                         % (size[0], size[1], size[2], bed[0], bed[1], bed[2]))
+    return {"triangles": len(tris), "size_mm": [round(s, 4) for s in size]}
+
+
+# --------------------------------------------------------------------------
+# Helpers
+# --------------------------------------------------------------------------
+
+def run_slicer(cmd, cwd, log_prefix, timeout):
+    """Run a slicer; return (stdout, stderr, wall seconds). Raise SliceError on failure."""
+    t0 = time.monotonic()
+    try:
+        proc = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                              stdin=subprocess.DEVNULL, timeout=timeout)
+    except subprocess.TimeoutExpired as exc:
+        raise SliceError("%s timed out after %s s\n%s" % (cmd[0], timeout,
+                         tail((exc.stderr or b"").decode("utf-8", "replace"))))
+    except FileNotFoundError:
+        raise SliceError("slicer binary not found: %s" % cmd[0])
+    wall = time.monotonic() - t0
+    out = proc.stdout.decode("utf-8", "replace")
+    err = proc.stderr.decode("utf-8", "replace")
+    with open(log_prefix + ".stdout.log", "w") as f:
+        f.write(out)
+    with open(log_prefix + ".stderr.log", "w") as f:
+        f.write(err)
+    if proc.returncode != 0:
+        raise SliceError("%s exited with status %d; stderr tail:\n%s"
+                         % (os.path.basename(cmd[0]), proc.returncode, tail(err or out)))
+    return out, err, wall
+
+
+def tail(text, lines=25):
+    return "\n".join(text.rstrip().splitlines()[-lines:])
+
+
+def write_cmd(path, cmd):
+    """Write the exact command as a re-runnable shell script, one option per line."""
+    lines, cur = [], []
+    for tok in cmd:
+        if tok.startswith("-") and cur:
+            lines.append(" ".join(cur))
+            cur = []
+        cur.append(_shell_quote(tok))
+    lines.append(" ".join(cur))
+    with open(path, "w") as f:
+        f.write("#!/bin/sh\n# written by bench/slicers/slice.py\n")
+        f.write(" \\\n  ".join(lines) + "\n")
+
+
+def _shell_quote(s):
+    if s and re.fullmatch(r"[A-Za-z0-9_./=:,+%-]+", s):
+        return s
+    return "'" + s.replace("'", "'\\''") + "'"
+
+
+# --------------------------------------------------------------------------
+# CuraEngine
+# --------------------------------------------------------------------------
+
+def slice_cura(stl, support, profile, work, timeout, extra=None):
+    overrides = cura_settings.cura_overrides(profile, support)
+    overrides.update(extra or {})
+    resolver = cura_settings.Resolver()
+    glob, ext, report = resolver.resolve(overrides)
+    if report["unknown_overrides"]:
+        raise ValueError("unknown Cura setting(s): %s" % ", ".join(report["unknown_overrides"]))
+    if report["errors"]:
+        raise SliceError("Cura setting formulas did not evaluate: %s" % json.dumps(report["errors"]))
+    with open(os.path.join(work, "cura_settings.json"), "w") as f:
+        json.dump({"overrides": overrides, "global": glob, "extruder0": ext, "report": report},
+                  f, indent=1, sort_keys=True)
+    # merged.stl is centred on the profile's bed (common.bed_mm); put that centre on Cura's
+    # machine centre.
+    bed_x, bed_y = float(profile["common"]["bed_mm"][0]), float(profile["common"]["bed_mm"][1])
+    gcode = os.path.join(work, "out.gcode")
+    cmd = [CURA_BIN, "slice", "-v",
+           "-j", os.path.join(resolver.defs_dir, "fdmprinter.def.json")]
+    for k in sorted(glob):
+        cmd += ["-s", "%s=%s" % (k, cura_settings.to_engine_string(glob[k]))]
+    cmd += ["-e0"]
+    for k in sorted(ext):
+        cmd += ["-s", "%s=%s" % (k, cura_settings.to_engine_string(ext[k]))]
+    # The merged STL is in bed coordinates (centred at bed_x/2, bed_y/2).  CuraEngine
+    # (machine_center_is_zero=false) adds (machine_width/2, machine_depth/2) to every
+    # mesh, so shift it back with the per-mesh position settings given after -l.
+    cmd += ["-l", stl,
+            "-s", "mesh_position_x=%s" % (-bed_x / 2.0),
+            "-s", "mesh_position_y=%s" % (-bed_y / 2.0),
+            "-s", "mesh_position_z=0",
+            "-s", "center_object=False",
+            "-o", gcode]
+    write_cmd(os.path.join(work, "cura_cmd.sh"), cmd)
+    out, err, wall = run_slicer(cmd, work, os.path.join(work, "cura"), timeout)
+    m_t = re.findall(r"Print time \(s\):\s*([0-9.]+)", err)
+    m_v = re.findall(r"Filament \(mm\^3\):\s*([0-9.]+)", err)
+    if not m_t or not m_v:
+        raise SliceError("CuraEngine output had no 'Print time (s)' / 'Filament (mm^3)' lines; stderr tail:\n"
+                         + tail(err))
+    if not os.path.isfile(gcode) or os.path.getsize(gcode) == 0:
+        raise SliceError("CuraEngine wrote no g-code; stderr tail:\n" + tail(err))
+    mm3 = float(m_v[-1])
+    diameter = float(ext["material_diameter"])
+    density = float(profile["common"]["filament_density_g_cm3"]) * 1e-3  # g/mm3
+    return {
+        "grams": mm3 * density,
+        "print_time_s": float(m_t[-1]),
+        "filament_mm3": mm3,
+        "filament_mm": mm3 / (math.pi * diameter * diameter / 4.0),
+        "slice_seconds": wall,
+    }
+
+
+# --------------------------------------------------------------------------
+# PrusaSlicer
+# --------------------------------------------------------------------------
+
+def prusa_config(profile, support):
+    prusa = profile["prusa"]
+    modes = prusa["support_modes"]
+    cfg = {k: v for k, v in prusa["settings"].items() if not k.startswith("_")}
+    cfg.update({k: v for k, v in modes[support].items() if not k.startswith("_")})
+    return cfg
+
+
+def _same_value(ours, theirs):
+    ours, theirs = ours.strip(), theirs.strip()
+    if ours == theirs:
+        return True
+    try:
+        return all(abs(float(x.rstrip("%")) - float(y.rstrip("%"))) < 1e-9
+                   for x, y in zip(ours.split(","), theirs.split(","))) and \
+            len(ours.split(",")) == len(theirs.split(",")) and ours.endswith("%") == theirs.endswith("%")
+    except ValueError:
+        return False
+
+
+def parse_duration(text):
+    total = 0.0
+    found = False
+    for num, unit in re.findall(r"([0-9.]+)\s*([dhms])", text):
+        total += float(num) * {"d": 86400, "h": 3600, "m": 60, "s": 1}[unit]
+        found = True
+    if not found:
+        raise ValueError("cannot parse duration %r" % text)
+    return total
+
+
+def slice_prusa(stl, support, profile, work, timeout, extra=None):
+    cfg = prusa_config(profile, support)
+    cfg.update(extra or {})
+    ini = os.path.join(work, "prusa_profile.ini")
+    with open(ini, "w") as f:
+        f.write("# generated by bench/slicers/slice.py from profile.json (support=%s)\n" % support)
+        for k in sorted(cfg):
+            f.write("%s = %s\n" % (k, cfg[k]))
+    datadir = os.path.join(work, "prusa-datadir")  # private: no user preset leaks in
+    os.makedirs(datadir, exist_ok=True)
+    gcode = os.path.join(work, "out.gcode")
+    cmd = [PRUSA_BIN, "--datadir", datadir, "--loglevel", "1", "--config-compatibility", "disable",
+           "--export-gcode", "--load", ini, "--dont-arrange", "-o", gcode, stl]
+    write_cmd(os.path.join(work, "prusa_cmd.sh"), cmd)
+    out, err, wall = run_slicer(cmd, work, os.path.join(work, "prusa"), timeout)
+    if not os.path.isfile(gcode) or os.path.getsize(gcode) == 0:
+        raise SliceError("PrusaSlicer wrote no g-code; stderr tail:\n" + tail(err or out))
+    with open(gcode, "rb") as f:
+        f.seek(0, 2)
+        size = f.tell()
+        f.seek(max(0, size - 200000))
+        foot = f.read().decode("utf-8", "replace")
+    def field(pattern):
+        m = re.findall(pattern, foot, re.M)
+        if not m:
+            raise SliceError("PrusaSlicer g-code footer has no %r" % pattern)
+        return m[-1]
+    # PrusaSlicer ignores unknown .ini keys silently: check that every option we set is in the
+    # config dump at the end of the g-code, with our value.
+    dumped = dict(re.findall(r"^; ([a-z0-9_]+) = (.*)$", foot, re.M))
+    bad = []
+    for k, v in cfg.items():
+        if k not in dumped:
+            bad.append("%s (not a PrusaSlicer option?)" % k)
+        elif not _same_value(str(v), dumped[k]):
+            bad.append("%s = %s (PrusaSlicer used %s)" % (k, v, dumped[k]))
+    if bad:
+        raise SliceError("PrusaSlicer did not apply: " + "; ".join(bad))
+    mm = float(field(r"^; filament used \[mm\] = ([0-9.]+)"))
+    grams = float(field(r"^; filament used \[g\] = ([0-9.]+)"))
+    t = parse_duration(field(r"^; estimated printing time \(normal mode\) = (.+)$"))
+    diameter = float(cfg["filament_diameter"])
+    return {
+        "grams": grams,
+        "print_time_s": t,
+        "filament_mm3": mm * math.pi * diameter * diameter / 4.0,
+        "filament_mm": mm,
+        "slice_seconds": wall,
+    }
+
+
+# --------------------------------------------------------------------------
+
+def slice_models(slicer, support, models, out_dir=None, profile_path=None, scale=1.0, timeout=3600,
+                 overrides=None):
+    """Slice; return the result dict.  Raises SliceError / ValueError."""
+    if slicer not in SUPPORT_MODES:
+        raise ValueError("--slicer must be cura or prusa")
+    if support not in SUPPORT_MODES[slicer]:
+        raise ValueError("--support for %s must be one of: %s" % (slicer, ", ".join(SUPPORT_MODES[slicer])))
+    for m in models:
+        if not os.path.isfile(m):
+            raise ValueError("no such file: %s" % m)
+    profile = cura_settings.load_profile(profile_path)
+    bed = profile["common"]["bed_mm"]
+    tmp = None
+    if out_dir:
+        work = os.path.abspath(out_dir)
+        os.makedirs(work, exist_ok=True)
+    else:
+        tmp = tempfile.mkdtemp(prefix="clever-slice-")
+        work = tmp
+    try:
+        stl = os.path.join(work, "merged.stl")
+        info = merge_and_place(models, stl, bed, scale)
+        fn = slice_cura if slicer == "cura" else slice_prusa
+        res = fn(stl, support, profile, work, timeout, overrides)
+        result = {"slicer": slicer, "support": support, "models": [os.path.abspath(m) for m in models]}
+        result.update(res)
+        result["scale"] = scale
+        result["model_size_mm"] = info["size_mm"]
+        result["overrides"] = dict(overrides or {})
+        result["out_dir"] = work if out_dir else None
+        if out_dir:
+            with open(os.path.join(work, "result.json"), "w") as f:
+                json.dump(result, f, indent=1)
+        return result
+    finally:
+        if tmp:
+            shutil.rmtree(tmp, ignore_errors=True)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description="Slice STL(s) with CuraEngine or PrusaSlicer and report "
+                                 "grams, print time and extruded volume.")
+    ap.add_argument("--slicer", required=True, choices=("cura", "prusa"))
+    ap.add_argument("--support", required=True, choices=("none", "normal", "tree", "grid"),
+                    help="cura: none|normal|tree; prusa: none|grid")
+    ap.add_argument("--out-dir", help="keep merged.stl, out.gcode, the command, logs and settings here")
+    ap.add_argument("--json", action="store_true", help="print one JSON object")
+    ap.add_argument("--profile", default=None, help="profile.json (default: beside this script)")
+    ap.add_argument("--scale", type=float, default=1.0, help="uniform scale applied to the merged mesh (default 1)")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="extra slicer setting on top of profile.json (repeatable). Cura: a setting key, "
+                         "value as JSON (never re-derived); prusa: an .ini key and value")
+    ap.add_argument("--timeout", type=float, default=3600, help="slicer time limit in seconds (default 3600)")
+    ap.add_argument("models", nargs="+", help="STL file(s); several are merged into one mesh")
+    args = ap.parse_args(argv)
+    extra = {}
+    for item in args.set:
+        key, eq, val = item.partition("=")
+        if not eq or not key:
+            print("slice.py: error: --set needs KEY=VALUE, got %r" % item, file=sys.stderr)
+            return 2
+        extra[key.strip()] = cura_settings.parse_cli_value(val) if args.slicer == "cura" else val
+    try:
+        res = slice_models(args.slicer, args.support, args.models, args.out_dir, args.profile,
+                           args.scale, args.timeout, extra)
+    except ValueError as exc:
+        print("slice.py: error: %s" % exc, file=sys.stderr)
+        return 2
+    except SliceError as exc:
+        print("slice.py: %s failed: %s" % (args.slicer, exc), file=sys.stderr)
+        return 1
+    if args.json:
+        print(json.dumps(res))
+    else:
+        for k in ("slicer", "support", "models", "grams", "print_time_s", "filament_mm3", "filament_mm",
+                  "slice_seconds", "out_dir"):
+            v = res[k]
+            if isinstance(v, float):
+                v = "%.3f" % v
+            elif isinstance(v, list):
+                v = " ".join(v)
+            print("%-14s %s" % (k, v))
+        print("%-14s %.1f min" % ("print_time", res["print_time_s"] / 60.0))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

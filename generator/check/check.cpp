@@ -1,0 +1,277 @@
+#include "check/check.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <unordered_map>
+
+#include "mesh/repair.hpp"
+#include "overhang/overhang.hpp"
+#include "query/model_query.hpp"
+#include "tree/tree.hpp"
+
+namespace cs {
+namespace {
+
+struct Shell {
+    Mesh mesh;
+    Vec3 bottom, top;  // centroids of the lowest and highest vertex rings
+    double bottom_width = 0, top_width = 0;
+    double zmin = 0, zmax = 0;
+};
+
+void ring(const Mesh& m, bool highest, Vec3& centre, double& width, double& z) {
+    z = highest ? -INFINITY : INFINITY;
+    for (const auto& v : m.vertices) z = highest ? std::max(z, v.z) : std::min(z, v.z);
+    const double tol = 1e-5;
+    Vec3 sum;
+    int n = 0;
+    double x0 = INFINITY, x1 = -INFINITY;
+    for (const auto& v : m.vertices)
+        if (std::abs(v.z - z) <= tol) sum += v, ++n, x0 = std::min(x0, v.x), x1 = std::max(x1, v.x);
+    centre = sum / std::max(n, 1);
+    width = x1 - x0;
+}
+
+// Where does a shell's axis pass at height z, and how wide is it there?
+bool contains(const Shell& s, const Vec3& p, double tol) {
+    if (p.z < s.zmin - tol || p.z > s.zmax + tol) return false;
+    double t = s.zmax > s.zmin ? std::clamp((p.z - s.zmin) / (s.zmax - s.zmin), 0.0, 1.0) : 0.0;
+    Vec3 c = s.bottom + (s.top - s.bottom) * t;
+    double half = 0.5 * (s.bottom_width + (s.top_width - s.bottom_width) * t) + tol;
+    return std::abs(p.x - c.x) <= half && std::abs(p.y - c.y) <= half;
+}
+
+struct PointGrid {
+    double cell;
+    std::unordered_map<std::uint64_t, std::vector<Vec3>> cells;
+    static std::uint64_t pack(long i, long j) { return (std::uint64_t(i) << 32) ^ std::uint64_t(j & 0xffffffff); }
+    long idx(double v) const { return static_cast<long>(std::floor(v / cell)); }
+    void add(const Vec3& p) { cells[pack(idx(p.x), idx(p.y))].push_back(p); }
+    template <typename F>
+    bool any_near(const Vec3& p, double r, F pred) const {
+        long r_cells = static_cast<long>(std::ceil(r / cell));
+        for (long i = idx(p.x) - r_cells; i <= idx(p.x) + r_cells; ++i)
+            for (long j = idx(p.y) - r_cells; j <= idx(p.y) + r_cells; ++j) {
+                auto it = cells.find(pack(i, j));
+                if (it == cells.end()) continue;
+                for (const auto& q : it->second)
+                    if (pred(q)) return true;
+            }
+        return false;
+    }
+};
+
+}  // namespace
+
+bool is_closed_and_consistent(const Mesh& m) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+    for (const auto& f : m.faces)
+        for (int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
+    for (const auto& [e, n] : directed) {
+        if (n != 1) return false;
+        auto it = directed.find({e.second, e.first});
+        if (it == directed.end() || it->second != 1) return false;
+    }
+    return true;
+}
+
+std::vector<Mesh> split_shells(const Mesh& raw) {
+    // Weld identical coordinates (STL stores each triangle's corners separately).
+    std::map<std::tuple<double, double, double>, std::uint32_t> index;
+    Mesh m;
+    std::vector<std::uint32_t> remap(raw.vertices.size());
+    for (size_t i = 0; i < raw.vertices.size(); ++i) {
+        auto key = std::make_tuple(raw.vertices[i].x, raw.vertices[i].y, raw.vertices[i].z);
+        auto [it, fresh] = index.emplace(key, static_cast<std::uint32_t>(m.vertices.size()));
+        if (fresh) m.vertices.push_back(raw.vertices[i]);
+        remap[i] = it->second;
+    }
+    for (const auto& f : raw.faces) m.faces.push_back({remap[f[0]], remap[f[1]], remap[f[2]]});
+    int count = 0;
+    auto comp = face_components(m, count);
+    std::vector<Mesh> shells(count);
+    std::vector<std::unordered_map<std::uint32_t, std::uint32_t>> local(count);
+    for (size_t fi = 0; fi < m.faces.size(); ++fi) {
+        auto& s = shells[comp[fi]];
+        auto& l = local[comp[fi]];
+        Triangle t;
+        for (int k = 0; k < 3; ++k) {
+            auto [it, fresh] = l.emplace(m.faces[fi][k], static_cast<std::uint32_t>(s.vertices.size()));
+            if (fresh) s.vertices.push_back(m.vertices[m.faces[fi][k]]);
+            t[k] = it->second;
+        }
+        s.faces.push_back(t);
+    }
+    return shells;
+}
+
+CheckResult check_supports(const Mesh& model, const Mesh& supports, const Params& p, const CheckOptions& o) {
+    CheckResult r;
+    ModelQuery q(model);
+    r.model_closed = is_closed_and_consistent(model);
+    const double reach = o.reach > 0 ? o.reach : p.sampling_distance;
+
+    // Shells and their shape.
+    std::vector<Shell> shells;
+    for (auto& m : split_shells(supports)) {
+        Shell s;
+        s.mesh = std::move(m);
+        ring(s.mesh, false, s.bottom, s.bottom_width, s.zmin);
+        ring(s.mesh, true, s.top, s.top_width, s.zmax);
+        shells.push_back(std::move(s));
+    }
+    r.bodies = shells.size();
+
+    std::vector<Vec3> contacts;
+    for (const auto& s : shells) {
+        if (!is_closed_and_consistent(s.mesh)) {
+            ++r.open_bodies;
+            if (r.flagged.size() < 10) r.flagged.push_back({s.bottom, s.top});
+        }
+        else if (signed_volume(s.mesh) <= 0) ++r.inward_bodies;
+        double angle = angle_from_vertical_deg(s.top, s.bottom);
+        r.max_angle = std::max(r.max_angle, angle);
+        if (angle > p.critical_angle + o.angle_tolerance) ++r.steep_bodies;
+        double w = std::min(s.top_width, s.bottom_width);
+        if (w > 0) r.worst_length_to_width = std::max(r.worst_length_to_width, distance(s.top, s.bottom) / w);
+        // Contacts: top vertices with the model just above them.
+        for (const auto& v : s.mesh.vertices) {
+            if (v.z < s.zmax - 1e-5) continue;
+            auto hit = q.first_hit(v, {0, 0, 1});
+            if (hit && hit->distance <= p.gap + 0.05) contacts.push_back(v);
+        }
+    }
+
+    // Penetration: edges that cross the model surface, or shells lying wholly inside it.
+    if (r.model_closed) {
+        for (const auto& s : shells) {
+            double depth = 0;
+            std::map<std::pair<std::uint32_t, std::uint32_t>, bool> seen;
+            for (const auto& f : s.mesh.faces)
+                for (int k = 0; k < 3; ++k) {
+                    auto a = f[k], b = f[(k + 1) % 3];
+                    if (!seen.emplace(std::minmax(a, b), true).second) continue;
+                    const Vec3 &pa = s.mesh.vertices[a], &pb = s.mesh.vertices[b];
+                    if (!q.segment_hits(pa, pb)) continue;
+                    int steps = std::max(1, static_cast<int>(std::ceil(distance(pa, pb) / 0.1)));
+                    for (int i = 0; i <= steps; ++i) {
+                        Vec3 x = pa + (pb - pa) * (double(i) / steps);
+                        if (q.inside(x)) depth = std::max(depth, std::sqrt(q.squared_distance(x)));
+                    }
+                }
+            if (depth == 0 && q.inside(s.mesh.vertices[0])) depth = std::sqrt(q.squared_distance(s.mesh.vertices[0]));
+            r.max_penetration = std::max(r.max_penetration, depth);
+            if (depth > o.penetration_tolerance) {
+                ++r.penetrating_bodies;
+                if (r.flagged.size() < 10) r.flagged.push_back({s.bottom, s.top});
+            }
+        }
+    }
+
+    // Grounding, lowest shells first: each rests on the bed, the model, or a grounded shell.
+    std::vector<size_t> order(shells.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return shells[a].zmin < shells[b].zmin; });
+    std::vector<char> grounded(shells.size(), 0);
+    double cell = 4.0;
+    std::unordered_map<std::uint64_t, std::vector<size_t>> by_cell;
+    auto pack = [](long i, long j) { return (std::uint64_t(i) << 32) ^ std::uint64_t(j & 0xffffffff); };
+    for (size_t i : order) {
+        const Shell& s = shells[i];
+        bool ok = s.zmin <= 0.05;
+        if (!ok) {
+            auto hit = q.first_hit(s.bottom + Vec3{0, 0, 1e-4}, {0, 0, -1});
+            ok = hit && hit->distance <= p.gap + 0.05;
+        }
+        if (!ok) {
+            long ci = static_cast<long>(std::floor(s.bottom.x / cell)), cj = static_cast<long>(std::floor(s.bottom.y / cell));
+            for (long a = ci - 1; a <= ci + 1 && !ok; ++a)
+                for (long b = cj - 1; b <= cj + 1 && !ok; ++b) {
+                    auto it = by_cell.find(pack(a, b));
+                    if (it == by_cell.end()) continue;
+                    for (size_t j : it->second)
+                        if (grounded[j] && contains(shells[j], s.bottom, 0.05)) { ok = true; break; }
+                }
+        }
+        grounded[i] = ok;
+        if (!ok) ++r.ungrounded_bodies;
+        // Index the shell by every cell its axis crosses, so shells above can find it.
+        Box3 b = bounding_box(s.mesh);
+        for (long a = static_cast<long>(std::floor(b.min.x / cell)); a <= static_cast<long>(std::floor(b.max.x / cell)); ++a)
+            for (long c = static_cast<long>(std::floor(b.min.y / cell)); c <= static_cast<long>(std::floor(b.max.y / cell)); ++c)
+                by_cell[pack(a, c)].push_back(i);
+    }
+
+    // Coverage.
+    OverhangOptions oo{p.critical_angle, p.sampling_distance, p.layer_height};
+    auto cls = classify_faces(model, oo);
+    std::vector<Vec3> points;
+    for (size_t i = 0; i < model.faces.size(); ++i) {
+        if (!cls[i]) continue;
+        const auto& f = model.faces[i];
+        size_t before = points.size();
+        rasterize_triangle(model.vertices[f[0]], model.vertices[f[1]], model.vertices[f[2]], 0.5 * p.sampling_distance, points);
+        if (points.size() == before)
+            points.push_back((model.vertices[f[0]] + model.vertices[f[1]] + model.vertices[f[2]]) / 3.0);
+    }
+    for (const auto& s : sample_overhangs(model, oo).samples)
+        if (s.kind == SampleKind::Point) points.push_back(s.p);
+    PointGrid grid{std::max(reach, 0.5)};
+    for (const auto& c : contacts) grid.add(c);
+    const double touch = touching_space(p);
+    for (const auto& x : points) {
+        if (x.z < p.layer_height) continue;
+        ++r.overhang_points;
+        auto hit = q.first_hit(x - Vec3{0, 0, 1e-4}, {0, 0, -1});
+        double free = x.z - (hit ? hit->point.z : 0.0);
+        if (free <= touch) {
+            ++r.exempt;
+            continue;
+        }
+        bool ok = grid.any_near(x, reach, [&](const Vec3& c) {
+            return c.z <= x.z + 1e-6 && horizontal_distance(c, x) <= reach && distance(c, x) <= reach + p.gap + 1e-6;
+        });
+        if (ok) ++r.covered;
+        else if (r.uncovered.size() < 10) r.uncovered.push_back(x);
+    }
+    return r;
+}
+
+std::string CheckResult::summary() const {
+    std::ostringstream s;
+    auto mark = [](bool ok) { return ok ? "ok  " : "FAIL"; };
+    s << mark(coverage_ok()) << " coverage     " << covered << " of " << (overhang_points - exempt)
+      << " overhang points have a contact within reach (" << exempt << " rest on what is below)\n";
+    for (const auto& u : uncovered) s << "       uncovered at (" << u.x << ", " << u.y << ", " << u.z << ")\n";
+    s << mark(penetrating_bodies == 0) << " penetration  " << penetrating_bodies << " solids reach into the model (deepest "
+      << max_penetration << " mm)" << (model_closed ? "" : " [model not closed: not judged]") << "\n";
+    s << mark(ungrounded_bodies == 0) << " grounding    " << ungrounded_bodies << " of " << bodies
+      << " solids rest on nothing\n";
+    s << mark(open_bodies + inward_bodies == 0) << " closed       " << open_bodies << " open, " << inward_bodies
+      << " inward-facing solids\n";
+    s << mark(steep_bodies == 0) << " angles       " << steep_bodies << " solids steeper than the critical angle (max "
+      << max_angle << " deg)\n";
+    for (const auto& [b, t] : flagged)
+        s << "       failing solid from (" << b.x << ", " << b.y << ", " << b.z << ") to (" << t.x << ", " << t.y << ", "
+          << t.z << ")\n";
+    s << "     strength     worst length-to-width ratio " << worst_length_to_width << "\n";
+    return s.str();
+}
+
+std::string CheckResult::json() const {
+    nlohmann::ordered_json j;
+    j["ok"] = ok();
+    j["coverage"] = {{"ok", coverage_ok()}, {"points", overhang_points}, {"covered", covered}, {"exempt", exempt}};
+    j["penetration"] = {{"bodies", penetrating_bodies}, {"max_mm", max_penetration}, {"judged", model_closed}};
+    j["grounding"] = {{"ungrounded", ungrounded_bodies}};
+    j["closed"] = {{"open", open_bodies}, {"inward", inward_bodies}};
+    j["angles"] = {{"steep", steep_bodies}, {"max_deg", max_angle}};
+    j["bodies"] = bodies;
+    j["worst_length_to_width"] = worst_length_to_width;
+    return j.dump(2);
+}
+
+}  // namespace cs

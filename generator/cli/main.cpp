@@ -1,0 +1,242 @@
+// clever-support command line: generate (default), check, render, presets.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <fmt/format.h>
+#include <iostream>
+#include <optional>
+
+#include "check/check.hpp"
+#include "core/errors.hpp"
+#include "mesh/mesh_io.hpp"
+#include "output/outputs.hpp"
+#include "output/render.hpp"
+#include "pipeline/pipeline.hpp"
+
+#ifndef CS_VERSION
+#define CS_VERSION "0.1.0"
+#endif
+
+namespace {
+
+using namespace cs;
+
+// Flags that override the chosen preset; unset ones leave it alone.
+struct ParamFlags {
+    std::string preset = "generic-0.4";
+    std::optional<double> critical_angle, layer_height, line_width, wall, sampling, tip_length, tip_diameter, gap, k,
+        d_min, d_max, strength_length, foot_height, foot_extra, clearance;
+    std::optional<bool> feet;
+    bool buildplate_only = false;
+    std::optional<std::string> strategy;
+
+    void add_to(CLI::App& app) {
+        app.add_option("--preset", preset, "Printer preset (see `clever-support presets`)")->capture_default_str();
+        auto g = "Parameters (override the preset)";
+        app.add_option("--critical-angle", critical_angle, "Steepest printable overhang, degrees from vertical")->group(g);
+        app.add_option("--layer-height", layer_height, "Layer height, mm")->group(g);
+        app.add_option("--line-width", line_width, "Extrusion width, mm")->group(g);
+        app.add_option("--wall", wall, "N-profile wall thickness, mm")->group(g);
+        app.add_option("--sampling", sampling, "Overhang sample spacing, mm")->group(g);
+        app.add_option("--tip-length", tip_length, "Tapered tip length, mm")->group(g);
+        app.add_option("--tip-diameter", tip_diameter, "Tip width at the model, mm")->group(g);
+        app.add_option("--gap", gap, "Z gap between tips and the model, mm")->group(g);
+        app.add_option("--k", k, "Eqn (1) coefficient: d = k * length[mm] * angle[deg]")->group(g);
+        app.add_option("--d-min", d_min, "Thinnest strut, mm")->group(g);
+        app.add_option("--d-max", d_max, "Thickest strut, mm")->group(g);
+        app.add_option("--strength-length", strength_length, "Safe length of a 1 mm strut at <= 30 deg, mm")->group(g);
+        app.add_option("--feet", feet, "Feet on the bed (true/false)")->group(g);
+        app.add_option("--foot-height", foot_height, "Foot height, mm")->group(g);
+        app.add_option("--foot-extra", foot_extra, "Foot overhang beyond the strut on each side, mm")->group(g);
+        app.add_option("--clearance", clearance, "Air kept between struts and the model, mm")->group(g);
+        app.add_flag("--buildplate-only", buildplate_only, "Supports stand on the bed only, routed around the model")->group(g);
+        app.add_option("--strategy", strategy, "tree (default) or columns (the vertical-columns baseline)")->group(g);
+    }
+
+    Params resolve() const {
+        Params p = preset_params(preset);
+        auto set = [](double& dst, const std::optional<double>& v) { if (v) dst = *v; };
+        set(p.critical_angle, critical_angle);
+        set(p.layer_height, layer_height);
+        set(p.line_width, line_width);
+        set(p.wall_thickness, wall);
+        set(p.sampling_distance, sampling);
+        set(p.tip_length, tip_length);
+        set(p.tip_diameter, tip_diameter);
+        set(p.gap, gap);
+        set(p.k, k);
+        set(p.d_min, d_min);
+        set(p.d_max, d_max);
+        set(p.strength_length, strength_length);
+        set(p.foot_height, foot_height);
+        set(p.foot_extra, foot_extra);
+        set(p.model_clearance, clearance);
+        if (feet) p.feet = *feet;
+        if (buildplate_only) p.supports_on_model = false;
+        if (strategy) p.strategy = *strategy;
+        if (auto why = p.validate(); !why.empty()) throw ParameterError(why);
+        return p;
+    }
+};
+
+void print_error(const std::string& msg) { std::fprintf(stderr, "clever-support: error: %s\n", msg.c_str()); }
+
+int cmd_presets() {
+    for (const auto& pr : presets()) {
+        const Params& p = pr.params;
+        std::printf("%-16s %s\n", pr.name.c_str(), pr.description.c_str());
+        std::printf("%-16s critical angle %g deg, layer %g mm, wall %g mm, sampling %g mm, tip %g x %g mm, gap %g mm, "
+                    "k %g, d %g..%g mm\n",
+                    "", p.critical_angle, p.layer_height, p.wall_thickness, p.sampling_distance, p.tip_length,
+                    p.tip_diameter, p.gap, p.k, p.d_min, p.d_max);
+    }
+    return kExitOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"clever-support: tree supports for FDM prints, as printable STL and parametric OpenSCAD.\n"
+                 "Examples:\n"
+                 "  clever-support model.stl                       # supports into out/model/\n"
+                 "  clever-support --fit 80 --render scan.obj      # scale to 80 mm, render the SCAD too\n"
+                 "  clever-support --preset replicator2-pla --orient keep part.stl\n"
+                 "  clever-support check --model out/m/m.model.stl --supports out/m/m.supports.stl\n"
+                 "  clever-support render out/m/m.scad -D k=0.003\n",
+                 "clever-support"};
+    app.set_version_flag("--version", CS_VERSION);
+    app.require_subcommand(0, 1);
+
+    // generate (the main command)
+    std::string input, out_dir, orient = "auto";
+    double scale = 1;
+    std::optional<double> fit;
+    bool do_render = false, quiet = false, verbose = false, as_json = false, no_si = false;
+    ParamFlags gen;
+    app.add_option("input", input, "Mesh file: .stl (ASCII or binary), .obj, .off, .ply");
+    app.add_option("--out", out_dir, "Output directory (default out/<name>)");
+    app.add_option("--scale", scale, "Scale factor applied first (e.g. 25.4 for inches)");
+    app.add_option("--fit", fit, "Then scale so the largest side is this many mm");
+    app.add_option("--orient", orient, "auto (least support), keep, or RX,RY,RZ in degrees")->capture_default_str();
+    app.add_flag("--render", do_render, "Also render <name>.scad with OpenSCAD into <name>.union.stl");
+    app.add_flag("--no-self-intersection-check", no_si, "Skip counting self-intersections of the input");
+    app.add_flag("-q,--quiet", quiet, "Print errors only");
+    app.add_flag("-v,--verbose", verbose, "Print every stage as it starts");
+    app.add_flag("--json", as_json, "Print the report JSON on stdout instead of the summary");
+    gen.add_to(app);
+
+    // check
+    auto* check = app.add_subcommand("check", "Verify supports: coverage, penetration, grounding, closed solids, angles.\n"
+                                               "Example: clever-support check --model m.model.stl --supports m.supports.stl");
+    std::string check_model, check_supports_path;
+    CheckOptions copt;
+    bool check_json = false;
+    ParamFlags chk;
+    check->add_option("--model", check_model, "Placed model STL")->required();
+    check->add_option("--supports", check_supports_path, "Support STL (separate closed solids)")->required();
+    check->add_option("--reach", copt.reach, "Max distance from an overhang point to a contact, mm (default: sampling)");
+    check->add_option("--penetration-tolerance", copt.penetration_tolerance, "mm")->capture_default_str();
+    check->add_flag("--json", check_json, "Print results as JSON");
+    chk.add_to(*check);
+
+    // render
+    auto* render = app.add_subcommand("render", "Render a generated .scad with OpenSCAD into <name>.union.stl.\n"
+                                                 "Example: clever-support render out/m/m.scad -D k=0.003");
+    RenderOptions ropt;
+    render->add_option("scad", ropt.scad, "Generated .scad file")->required();
+    render->add_option("-o,--output", ropt.output, "Output file (default <name>.union.stl)");
+    render->add_option("-D", ropt.defines, "Override a parameter: name=value (repeatable)");
+    render->add_option("--openscad", ropt.openscad, "OpenSCAD command to use");
+    render->add_option("--export-format", ropt.format, "binstl, asciistl or png")->capture_default_str();
+
+    auto* list = app.add_subcommand("presets", "List the printer presets.");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        print_error(std::string(e.what()) + ". Run `clever-support --help` for usage.");
+        return kExitUsage;
+    }
+
+    try {
+        if (list->parsed()) return cmd_presets();
+
+        if (render->parsed()) {
+            auto r = render_scad(ropt);
+            if (!r.ok) {
+                print_error(r.error);
+                if (!r.log.empty()) std::fprintf(stderr, "%s", r.log.c_str());
+                return kExitRenderFailed;
+            }
+            std::printf("rendered %s in %.1f s\n", r.output.c_str(), r.seconds);
+            return kExitOk;
+        }
+
+        if (check->parsed()) {
+            Params p = chk.resolve();
+            RepairReport rr;
+            Mesh model = repair_mesh(read_mesh(check_model), check_model, rr);
+            Mesh sup = read_mesh(check_supports_path);
+            auto res = check_supports(model, sup, p, copt);
+            std::printf("%s", check_json ? (res.json() + "\n").c_str() : res.summary().c_str());
+            return res.ok() ? kExitOk : kExitCheckFailed;
+        }
+
+        if (input.empty()) {
+            print_error("no input mesh given. Example: clever-support model.stl (see --help)");
+            return kExitUsage;
+        }
+        Job job;
+        job.input = input;
+        job.scale = scale;
+        job.fit = fit;
+        job.orient = orient;
+        job.self_intersection_check = !no_si;
+        job.params = gen.resolve();
+        auto progress = [&](const std::string& stage) {
+            if (verbose) std::fprintf(stderr, "  %s...\n", stage.c_str());
+            else if (!quiet && isatty(2)) std::fprintf(stderr, "\r\033[K  %s...", stage.c_str());
+        };
+        Result r = run_job(job, progress);
+        if (!quiet && !verbose && isatty(2)) std::fprintf(stderr, "\r\033[K");
+        if (!quiet)
+            for (const auto& w : r.warnings) std::fprintf(stderr, "clever-support: warning: %s\n", w.c_str());
+        std::string dir = out_dir.empty() ? "out/" + r.name : out_dir;
+        write_outputs(dir, output_files(r, job, CS_VERSION));
+        if (as_json) std::printf("%s", report_json(r, job).c_str());
+        else if (!quiet) std::printf("%s", human_summary(r, dir).c_str());
+        if (do_render) {
+            RenderOptions ro;
+            ro.scad = dir + "/" + r.name + ".scad";
+            auto rr = render_scad(ro);
+            if (!rr.ok) {
+                print_error(rr.error);
+                return kExitRenderFailed;
+            }
+            if (!quiet && !as_json) std::printf("  rendered    %s in %.1f s\n", rr.output.c_str(), rr.seconds);
+        }
+        return kExitOk;
+    } catch (const InputError& e) {
+        print_error(e.what());
+        return kExitBadInput;
+    } catch (const ParameterError& e) {
+        print_error(std::string(e.what()) + ".");
+        return kExitUsage;
+    } catch (const OutputError& e) {
+        print_error(e.what());
+        return kExitOutputFailed;
+    } catch (const std::bad_alloc&) {
+        print_error("out of memory. Try a larger --sampling or a smaller model.");
+        return kExitInternal;
+    } catch (const std::exception& e) {
+        print_error(std::string("internal error: ") + e.what() + ". Please report this with the input file.");
+        return kExitInternal;
+    }
+}

@@ -1,0 +1,95 @@
+// Plain geometry types shared by every stage: a 3-vector and an indexed triangle mesh.
+// Units are millimetres; +Z is the build direction; the bed is z = 0.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace cs {
+
+struct Vec3 {
+    double x = 0, y = 0, z = 0;
+
+    Vec3 operator+(const Vec3& o) const { return {x + o.x, y + o.y, z + o.z}; }
+    Vec3 operator-(const Vec3& o) const { return {x - o.x, y - o.y, z - o.z}; }
+    Vec3 operator*(double s) const { return {x * s, y * s, z * s}; }
+    Vec3 operator/(double s) const { return {x / s, y / s, z / s}; }
+    Vec3 operator-() const { return {-x, -y, -z}; }
+    Vec3& operator+=(const Vec3& o) { x += o.x; y += o.y; z += o.z; return *this; }
+    bool operator==(const Vec3& o) const = default;
+};
+
+inline double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline double norm(const Vec3& a) { return std::sqrt(dot(a, a)); }
+inline Vec3 normalized(const Vec3& a) {
+    double n = norm(a);
+    return n > 0 ? a / n : Vec3{};
+}
+inline double distance(const Vec3& a, const Vec3& b) { return norm(a - b); }
+inline double horizontal_distance(const Vec3& a, const Vec3& b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+// Angle of the segment a-b from vertical, in degrees (0 = vertical).
+inline double angle_from_vertical_deg(const Vec3& a, const Vec3& b) {
+    double h = horizontal_distance(a, b), v = std::abs(a.z - b.z);
+    return std::atan2(h, v) * 180.0 / M_PI;
+}
+
+using Triangle = std::array<std::uint32_t, 3>;
+
+struct Mesh {
+    std::vector<Vec3> vertices;
+    std::vector<Triangle> faces;
+
+    bool empty() const { return faces.empty(); }
+};
+
+struct Box3 {
+    Vec3 min{INFINITY, INFINITY, INFINITY};
+    Vec3 max{-INFINITY, -INFINITY, -INFINITY};
+
+    void add(const Vec3& p) {
+        min = {std::fmin(min.x, p.x), std::fmin(min.y, p.y), std::fmin(min.z, p.z)};
+        max = {std::fmax(max.x, p.x), std::fmax(max.y, p.y), std::fmax(max.z, p.z)};
+    }
+    Vec3 size() const { return max - min; }
+    Vec3 center() const { return (min + max) * 0.5; }
+};
+
+inline Box3 bounding_box(const Mesh& m) {
+    Box3 b;
+    for (const auto& v : m.vertices) b.add(v);
+    return b;
+}
+
+inline Vec3 face_normal_unnormalized(const Mesh& m, const Triangle& f) {
+    const Vec3 &a = m.vertices[f[0]], &b = m.vertices[f[1]], &c = m.vertices[f[2]];
+    return cross(b - a, c - a);
+}
+
+// Signed volume by the divergence theorem: positive for a closed, outward-facing mesh.
+inline double signed_volume(const Mesh& m) {
+    double v = 0;
+    for (const auto& f : m.faces)
+        v += dot(m.vertices[f[0]], cross(m.vertices[f[1]], m.vertices[f[2]]));
+    return v / 6.0;
+}
+
+inline double surface_area(const Mesh& m) {
+    double a = 0;
+    for (const auto& f : m.faces) a += 0.5 * norm(face_normal_unnormalized(m, f));
+    return a;
+}
+
+// Appends `b` to `a` (vertex indices of b are shifted).
+inline void append(Mesh& a, const Mesh& b) {
+    auto offset = static_cast<std::uint32_t>(a.vertices.size());
+    a.vertices.insert(a.vertices.end(), b.vertices.begin(), b.vertices.end());
+    for (auto f : b.faces) a.faces.push_back({f[0] + offset, f[1] + offset, f[2] + offset});
+}
+
+}  // namespace cs

@@ -1,0 +1,69 @@
+// Printer and algorithm parameters: one struct, one preset per printer.
+// Units: millimetres and degrees. See README "Parameters" for the meaning of each.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace cs {
+
+struct Params {
+    std::string preset = "generic-0.4";
+
+    // Printer.
+    double critical_angle = 50;   // steepest printable angle, from vertical
+    double layer_height = 0.2;
+    double line_width = 0.4;      // nozzle extrusion width (informative; walls use wall_thickness)
+    double wall_thickness = 0.5;  // wall of the N-profile: slicers drop 0.4 mm walls (slicer notes, pitfall 6)
+
+    // Sampling and contacts.
+    double sampling_distance = 1.5;  // overhang sample spacing on the global XY lattice
+    double tip_length = 1.0;         // tapered tip at every model contact
+    double tip_diameter = 0.8;       // tip end width at the model
+    double gap = 0.2;                // z air gap between a tip and the model (one layer)
+
+    // Strut sizing (Eqn 1: d = k * l * alpha, clamped; never narrowing downward).
+    double k = 0.0015;
+    double d_min = 1.0;
+    double d_max = 4.0;
+    // Strength rule: a strut (or unbranched run) of width d and angle a is safe up to
+    // safe_length = strength_length * (d / 1 mm)^2 * angle_factor(a). See README "Strength".
+    double strength_length = 30.0;
+
+    // Feet on the bed.
+    bool feet = true;
+    double foot_height = 1.0;
+    double foot_extra = 1.5;  // a foot is the strut width plus this on each side
+
+    // Tree growth.
+    bool supports_on_model = true;       // false = --buildplate-only
+    std::string strategy = "tree";       // tree | columns
+    double model_clearance = 0.3;        // extra air kept between a strut and the model
+
+    // Returns a description of the first invalid value, or "" when all are valid.
+    std::string validate() const;
+};
+
+struct Preset {
+    std::string name;
+    std::string description;
+    Params params;
+};
+
+// All built-in presets; the first is the default.
+const std::vector<Preset>& presets();
+// Throws ParameterError naming the known presets when `name` is unknown.
+Params preset_params(const std::string& name);
+
+// Eqn (1) of the paper: d = k * l * alpha (l in mm, alpha in degrees from vertical), clamped.
+double eqn1_width(const Params& p, double length, double angle_deg);
+// Width of the strut leaving a branch point that joins struts of widths w_i: (sum w_i^3)^(1/3)
+// (Murray's rule, as trees and vessels branch), never below the widest of them, clamped.
+double merged_width(const Params& p, const std::vector<double>& widths);
+
+// Width needed for a run of length `length` at `angle_deg` from vertical (strength rule).
+double strength_width(const Params& p, double length, double angle_deg);
+// Safe length of a strut of width `d` at `angle_deg` (inverse of strength_width).
+double safe_length(const Params& p, double d, double angle_deg);
+
+}  // namespace cs

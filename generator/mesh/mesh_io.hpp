@@ -1,0 +1,35 @@
+// Reading and writing triangle meshes.
+//
+// Readers accept STL (ASCII and binary), OBJ, OFF and PLY (ASCII and binary), chosen by the file
+// extension, and throw InputError with a message that names the file, says what is wrong and what
+// to do. They return the triangles as stored (STL gives three fresh vertices per triangle); welding
+// and repair are the job of mesh/repair.hpp.
+//
+// Writers never leave a half-written file: they write to a temporary file next to the target and
+// rename it into place, throwing OutputError on any failure.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "core/geometry.hpp"
+
+namespace cs {
+
+// Reads any supported format. Throws InputError.
+Mesh read_mesh(const std::string& path);
+
+// Parses in-memory content; `name` is used in messages and `format` is one of stl, obj, off, ply.
+// This is what the fuzz targets call.
+Mesh parse_mesh(std::string_view bytes, const std::string& format, const std::string& name);
+
+// Binary STL with recomputed facet normals. Throws OutputError.
+void write_stl(const std::string& path, const Mesh& mesh, const std::string& header = "clever-support");
+
+// Writes `content` atomically (temporary file + fsync + rename). Throws OutputError.
+void write_file_atomic(const std::string& path, std::string_view content);
+
+// The binary STL encoding of `mesh`, as written by write_stl.
+std::string encode_stl(const Mesh& mesh, const std::string& header);
+
+}  // namespace cs

@@ -1,0 +1,276 @@
+#include "mesh/repair.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <numeric>
+#include <unordered_map>
+
+#include "core/errors.hpp"
+
+namespace cs {
+namespace {
+
+struct VecHash {
+    size_t operator()(const Vec3& v) const {
+        std::uint64_t h = 1469598103934665603ull;
+        for (double c : {v.x, v.y, v.z}) {
+            if (c == 0) c = 0;  // -0 and +0 weld
+            std::uint64_t bits;
+            std::memcpy(&bits, &c, 8);
+            h = (h ^ bits) * 1099511628211ull;
+        }
+        return h;
+    }
+};
+
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+    return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a;
+}
+
+struct DisjointSets {
+    std::vector<int> parent;
+    explicit DisjointSets(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+    int find(int x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    }
+    void unite(int a, int b) {
+        a = find(a), b = find(b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);  // deterministic roots
+    }
+};
+
+// Does a ray from p along +x (slightly tilted to avoid edges) cross the faces `fs` an odd number of times?
+bool inside_by_parity(const Mesh& m, const std::vector<size_t>& fs, const Vec3& p) {
+    const Vec3 dir = normalized(Vec3{1, 0.000123457, 0.000345679});
+    int hits = 0;
+    for (size_t fi : fs) {
+        const auto& f = m.faces[fi];
+        const Vec3 &a = m.vertices[f[0]], &b = m.vertices[f[1]], &c = m.vertices[f[2]];
+        Vec3 e1 = b - a, e2 = c - a, h = cross(dir, e2);
+        double det = dot(e1, h);
+        if (std::abs(det) < 1e-300) continue;
+        Vec3 s = p - a;
+        double u = dot(s, h) / det;
+        if (u < 0 || u > 1) continue;
+        Vec3 q = cross(s, e1);
+        double v = dot(dir, q) / det;
+        if (v < 0 || u + v > 1) continue;
+        if (dot(e2, q) / det > 0) ++hits;
+    }
+    return hits % 2 == 1;
+}
+
+}  // namespace
+
+std::vector<int> face_components(const Mesh& m, int& count) {
+    DisjointSets ds(m.vertices.size());
+    for (const auto& f : m.faces) ds.unite(f[0], f[1]), ds.unite(f[0], f[2]);
+    std::unordered_map<int, int> ids;
+    std::vector<int> comp(m.faces.size());
+    for (size_t i = 0; i < m.faces.size(); ++i) {
+        int root = ds.find(m.faces[i][0]);
+        auto [it, fresh] = ids.emplace(root, static_cast<int>(ids.size()));
+        comp[i] = it->second;
+    }
+    count = static_cast<int>(ids.size());
+    return comp;
+}
+
+Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
+    r = {};
+    r.input_triangles = raw.faces.size();
+    Box3 box = bounding_box(raw);
+    double extent = std::max({box.size().x, box.size().y, box.size().z});
+
+    // 1. Weld identical vertices.
+    Mesh m;
+    std::unordered_map<Vec3, std::uint32_t, VecHash> index;
+    std::vector<std::uint32_t> remap(raw.vertices.size());
+    for (size_t i = 0; i < raw.vertices.size(); ++i) {
+        Vec3 v = raw.vertices[i];
+        auto [it, fresh] = index.emplace(v, static_cast<std::uint32_t>(m.vertices.size()));
+        if (fresh) m.vertices.push_back(v);
+        remap[i] = it->second;
+    }
+    // Count only vertices that were genuinely shared by separate triangle corners in indexed input.
+    size_t used_raw = 0;
+    {
+        std::vector<char> used(raw.vertices.size(), 0);
+        for (const auto& f : raw.faces) used[f[0]] = used[f[1]] = used[f[2]] = 1;
+        used_raw = static_cast<size_t>(std::count(used.begin(), used.end(), 1));
+    }
+    r.welded_vertices = used_raw > m.vertices.size() ? used_raw - m.vertices.size() : 0;
+
+    // 2. Drop degenerate and duplicate triangles.
+    const double min_area2 = std::pow(extent * 1e-9, 4);
+    std::unordered_map<std::uint64_t, std::vector<size_t>> seen;  // keyed by sorted corner hash
+    for (const auto& f0 : raw.faces) {
+        Triangle f{remap[f0[0]], remap[f0[1]], remap[f0[2]]};
+        if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) {
+            ++r.degenerate_removed;
+            continue;
+        }
+        Vec3 n = face_normal_unnormalized(m, f);
+        if (dot(n, n) <= min_area2) {
+            ++r.degenerate_removed;
+            continue;
+        }
+        Triangle s = f;
+        std::sort(s.begin(), s.end());
+        std::uint64_t key = (std::uint64_t(s[0]) * 73856093u) ^ (std::uint64_t(s[1]) * 19349663u) ^
+                            (std::uint64_t(s[2]) * 83492791u);
+        auto& bucket = seen[key];
+        bool dup = false;
+        for (size_t j : bucket) {
+            Triangle t = m.faces[j];
+            std::sort(t.begin(), t.end());
+            if (t == s) dup = true;
+        }
+        if (dup) {
+            ++r.duplicates_removed;
+            continue;
+        }
+        bucket.push_back(m.faces.size());
+        m.faces.push_back(f);
+    }
+    if (m.faces.empty())
+        throw InputError(name + ": every triangle is degenerate (zero area); nothing to print. Re-export the model.");
+
+    // 3. Edge use: holes and non-manifold edges.
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> edge_faces;
+    edge_faces.reserve(m.faces.size() * 2);
+    for (std::uint32_t fi = 0; fi < m.faces.size(); ++fi)
+        for (int k = 0; k < 3; ++k) edge_faces[edge_key(m.faces[fi][k], m.faces[fi][(k + 1) % 3])].push_back(fi);
+    for (const auto& [key, fs] : edge_faces) {
+        if (fs.size() == 1) ++r.boundary_edges;
+        if (fs.size() > 2) ++r.nonmanifold_edges;
+    }
+
+    // 4. Orient each edge-connected patch consistently (breadth first across manifold edges).
+    std::vector<int> patch(m.faces.size(), -1);
+    std::vector<char> flip(m.faces.size(), 0);
+    int patches = 0;
+    auto directed = [&](std::uint32_t fi, std::uint32_t a, std::uint32_t b) {
+        // +1 if face fi (with its current flip) traverses a->b, -1 if b->a.
+        const auto& f = m.faces[fi];
+        for (int k = 0; k < 3; ++k)
+            if (f[k] == a && f[(k + 1) % 3] == b) return flip[fi] ? -1 : 1;
+        return flip[fi] ? 1 : -1;
+    };
+    for (std::uint32_t seed = 0; seed < m.faces.size(); ++seed) {
+        if (patch[seed] >= 0) continue;
+        std::vector<std::uint32_t> queue{seed};
+        patch[seed] = patches;
+        for (size_t qi = 0; qi < queue.size(); ++qi) {
+            std::uint32_t fi = queue[qi];
+            for (int k = 0; k < 3; ++k) {
+                std::uint32_t a = m.faces[fi][k], b = m.faces[fi][(k + 1) % 3];
+                const auto& fs = edge_faces[edge_key(a, b)];
+                if (fs.size() != 2) continue;
+                std::uint32_t g = fs[0] == fi ? fs[1] : fs[0];
+                if (patch[g] >= 0) continue;
+                patch[g] = patches;
+                if (directed(fi, a, b) == directed(g, a, b)) flip[g] = !flip[g];
+                queue.push_back(g);
+            }
+        }
+        ++patches;
+    }
+    for (size_t i = 0; i < m.faces.size(); ++i)
+        if (flip[i]) std::swap(m.faces[i][1], m.faces[i][2]);
+
+    // 5. Turn each patch outward: positive volume, unless it is nested an odd number of times
+    //    inside the others (a cavity), where it must face inward.
+    std::vector<std::vector<size_t>> patch_faces(patches);
+    for (size_t i = 0; i < m.faces.size(); ++i) patch_faces[patch[i]].push_back(i);
+    std::vector<double> volume(patches, 0);
+    for (int p = 0; p < patches; ++p)
+        for (size_t fi : patch_faces[p]) {
+            const auto& f = m.faces[fi];
+            volume[p] += dot(m.vertices[f[0]], cross(m.vertices[f[1]], m.vertices[f[2]])) / 6.0;
+        }
+    for (int p = 0; p < patches; ++p) {
+        int depth = 0;
+        if (patches > 1 && patches <= 64) {
+            Vec3 probe = m.vertices[m.faces[patch_faces[p][0]][0]];
+            for (int q = 0; q < patches; ++q)
+                if (q != p && std::abs(volume[q]) > 0 && inside_by_parity(m, patch_faces[q], probe)) ++depth;
+        }
+        bool want_positive = depth % 2 == 0;
+        if ((volume[p] < 0) == want_positive) {
+            for (size_t fi : patch_faces[p]) {
+                std::swap(m.faces[fi][1], m.faces[fi][2]);
+                flip[fi] = !flip[fi];
+            }
+            volume[p] = -volume[p];
+        }
+    }
+    r.flipped = static_cast<size_t>(std::count(flip.begin(), flip.end(), 1));
+
+    int shells = 0;
+    face_components(m, shells);
+    r.shells = static_cast<size_t>(shells);
+
+    double vol = signed_volume(m);
+    if (!(std::abs(vol) > std::pow(extent, 3) * 1e-9))
+        throw InputError(name + ": the mesh encloses no volume (it is flat or a single sheet); there is no solid to "
+                                "support. Export the solid body, not a surface.");
+
+    // Drop vertices no face uses, so outputs carry no strays.
+    std::vector<std::uint32_t> keep(m.vertices.size(), UINT32_MAX);
+    Mesh out;
+    for (auto& f : m.faces) {
+        Triangle g;
+        for (int k = 0; k < 3; ++k) {
+            if (keep[f[k]] == UINT32_MAX) {
+                keep[f[k]] = static_cast<std::uint32_t>(out.vertices.size());
+                out.vertices.push_back(m.vertices[f[k]]);
+            }
+            g[k] = keep[f[k]];
+        }
+        out.faces.push_back(g);
+    }
+
+    auto warn = [&](size_t n, const std::string& what) {
+        if (n) r.warnings.push_back(name + ": " + std::to_string(n) + " " + what);
+    };
+    warn(r.degenerate_removed, "degenerate triangles removed");
+    warn(r.duplicates_removed, "duplicate triangles removed");
+    warn(r.flipped, "triangles flipped to face outward");
+    warn(r.boundary_edges, "open (boundary) edges: the mesh has holes; overhangs near them are still supported");
+    warn(r.nonmanifold_edges, "non-manifold edges (shared by more than two triangles); carried on");
+    return out;
+}
+
+void rotation_from_euler_deg(double rx, double ry, double rz, double out[3][3]) {
+    auto rad = [](double d) { return d * M_PI / 180.0; };
+    double cx = std::cos(rad(rx)), sx = std::sin(rad(rx));
+    double cy = std::cos(rad(ry)), sy = std::sin(rad(ry));
+    double cz = std::cos(rad(rz)), sz = std::sin(rad(rz));
+    // R = Rz * Ry * Rx
+    double R[3][3] = {{cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx},
+                      {sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx},
+                      {-sy, cy * sx, cy * cx}};
+    std::memcpy(out, R, sizeof(R));
+}
+
+Mesh place_on_bed(const Mesh& m, double scale, const double rotation[3][3], Placement& pl) {
+    Mesh out = m;
+    pl.scale = scale;
+    std::memcpy(pl.rotation, rotation, sizeof(pl.rotation));
+    for (auto& v : out.vertices) {
+        Vec3 s = v * scale;
+        v = {rotation[0][0] * s.x + rotation[0][1] * s.y + rotation[0][2] * s.z,
+             rotation[1][0] * s.x + rotation[1][1] * s.y + rotation[1][2] * s.z,
+             rotation[2][0] * s.x + rotation[2][1] * s.y + rotation[2][2] * s.z};
+    }
+    Box3 b = bounding_box(out);
+    pl.translation = {-(b.min.x + b.max.x) / 2, -(b.min.y + b.max.y) / 2, -b.min.z};
+    for (auto& v : out.vertices) v += pl.translation;
+    if (scale < 0)  // a mirror turns the mesh inside out
+        for (auto& f : out.faces) std::swap(f[1], f[2]);
+    return out;
+}
+
+}  // namespace cs

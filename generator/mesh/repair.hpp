@@ -1,0 +1,48 @@
+// Making a raw triangle soup into a mesh the pipeline can trust, and putting it on the bed.
+//
+// repair_mesh welds identical vertices, drops degenerate and duplicate triangles, orients every
+// shell consistently and outward (a shell nested inside another keeps facing inward: it is a
+// cavity), and counts what it cannot fix (holes, non-manifold edges). Every change is reported as
+// a warning; only a mesh with nothing printable left is an InputError.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/geometry.hpp"
+
+namespace cs {
+
+struct RepairReport {
+    size_t input_triangles = 0;
+    size_t welded_vertices = 0;       // vertices merged into an identical one
+    size_t degenerate_removed = 0;    // zero-area or repeated-index triangles
+    size_t duplicates_removed = 0;    // the same triangle twice
+    size_t flipped = 0;               // triangles turned to face outward
+    size_t boundary_edges = 0;        // edges of holes
+    size_t nonmanifold_edges = 0;     // edges shared by more than two triangles
+    size_t shells = 0;
+    std::vector<std::string> warnings;
+};
+
+// Throws InputError (naming `name`) when no triangle survives or the mesh encloses no volume.
+Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& report);
+
+// Connected components by shared vertices; returns a component id per face and the count.
+std::vector<int> face_components(const Mesh& m, int& count);
+
+// How the mesh was put on the bed: p_placed = R * (scale * p_input) + translation.
+struct Placement {
+    double scale = 1;
+    double rotation[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    Vec3 translation;
+};
+
+// Rotation matrix for Euler angles in degrees, applied X then Y then Z (as OpenSCAD's rotate([x,y,z])).
+void rotation_from_euler_deg(double rx, double ry, double rz, double out[3][3]);
+
+// Applies scale and rotation, then translates so min z = 0 and the XY bounding box is centred at
+// the origin. Fills `placement` with what was applied.
+Mesh place_on_bed(const Mesh& m, double scale, const double rotation[3][3], Placement& placement);
+
+}  // namespace cs

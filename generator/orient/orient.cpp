@@ -1,0 +1,161 @@
+#include "orient/orient.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/errors.hpp"
+#include "mesh/repair.hpp"
+#include "overhang/overhang.hpp"
+
+namespace cs {
+namespace {
+
+// Overhang area of the mesh after rotation, without building the rotated mesh.
+double rotated_overhang_area(const Mesh& m, const Rotation& r, double critical_angle, double bed_height) {
+    std::vector<double> z(m.vertices.size());
+    double zmin = INFINITY;
+    for (size_t i = 0; i < m.vertices.size(); ++i) {
+        z[i] = r.m[2][0] * m.vertices[i].x + r.m[2][1] * m.vertices[i].y + r.m[2][2] * m.vertices[i].z;
+        zmin = std::min(zmin, z[i]);
+    }
+    const double sin_c = std::sin(critical_angle * M_PI / 180.0);
+    double area = 0;
+    for (const auto& f : m.faces) {
+        if (std::max({z[f[0]], z[f[1]], z[f[2]]}) - zmin <= 0.5 * bed_height) continue;
+        Vec3 n = face_normal_unnormalized(m, f);
+        double len = norm(n);
+        if (len == 0) continue;
+        double nz = r.m[2][0] * n.x + r.m[2][1] * n.y + r.m[2][2] * n.z;
+        if (nz / len < -sin_c) area += 0.5 * len;
+    }
+    return area;
+}
+
+// Greedy clustering of unit directions within `max_angle` degrees, heaviest first.
+std::vector<Vec3> merge_directions(std::vector<std::pair<double, Vec3>> weighted, double max_angle, size_t keep) {
+    std::stable_sort(weighted.begin(), weighted.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    const double cos_max = std::cos(max_angle * M_PI / 180.0);
+    std::vector<Vec3> out;
+    for (const auto& [w, d] : weighted) {
+        bool near = std::any_of(out.begin(), out.end(), [&](const Vec3& o) { return dot(o, d) > cos_max; });
+        if (!near) out.push_back(d);
+        if (out.size() >= keep) break;
+    }
+    return out;
+}
+
+}  // namespace
+
+Rotation rotation_to_down(const Vec3& down) {
+    Rotation r;
+    Vec3 d = normalized(down), target{0, 0, -1};
+    double c = dot(d, target);
+    if (c > 1 - 1e-12) return r;
+    if (c < -1 + 1e-12) {  // upside down: half turn about X
+        r.m[1][1] = -1, r.m[2][2] = -1;
+        return r;
+    }
+    Vec3 axis = normalized(cross(d, target));
+    double s = std::sqrt(std::max(0.0, 1 - c * c));
+    double x = axis.x, y = axis.y, z = axis.z, t = 1 - c;
+    double m[3][3] = {{t * x * x + c, t * x * y - s * z, t * x * z + s * y},
+                      {t * x * y + s * z, t * y * y + c, t * y * z - s * x},
+                      {t * x * z - s * y, t * y * z + s * x, t * z * z + c}};
+    std::copy(&m[0][0], &m[0][0] + 9, &r.m[0][0]);
+    return r;
+}
+
+Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::string& mode,
+                               const std::function<PoseSupport(const Mesh& rotated)>& support,
+                               size_t evaluate_best) {
+    Orientation o;
+    if (mode == "keep") {
+        o.mode = "keep";
+        o.decided_by = "kept";
+        return o;
+    }
+    if (mode != "auto") {
+        std::istringstream in(mode);
+        double a[3];
+        char c1 = 0, c2 = 0;
+        if (!(in >> a[0] >> c1 >> a[1] >> c2 >> a[2]) || c1 != ',' || c2 != ',' || !in.eof() ||
+            !std::isfinite(a[0]) || !std::isfinite(a[1]) || !std::isfinite(a[2]))
+            throw ParameterError("--orient must be auto, keep or RX,RY,RZ in degrees (e.g. 90,0,0), not '" + mode + "'");
+        o.mode = "euler";
+        o.decided_by = "given";
+        rotation_from_euler_deg(a[0], a[1], a[2], o.rotation.m);
+        return o;
+    }
+    o.mode = "auto";
+
+    // Candidates: the input pose first (wins ties), the six axes, then hull rest positions.
+    std::vector<std::pair<Vec3, std::string>> dirs{{{0, 0, -1}, "input"}};
+    for (Vec3 d : {Vec3{0, 0, 1}, Vec3{1, 0, 0}, Vec3{-1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, -1, 0}})
+        dirs.push_back({d, "axis"});
+    {
+        // Near-parallel hull normals merge; a direction many hull faces share is a broad, stable
+        // rest position, so merging keeps the most shared directions first.
+        auto normals = hull_face_normals(mesh.vertices);
+        if (normals.size() > 4000) normals.resize(4000);  // bounded work on huge scans
+        const double cos_near = std::cos(10 * M_PI / 180);
+        std::vector<std::pair<double, Vec3>> counted;
+        for (const auto& n : normals) {
+            double w = 0;
+            for (const auto& m : normals) w += dot(n, m) > cos_near;
+            counted.push_back({w, n});
+        }
+        for (auto& d : merge_directions(counted, 10.0, 48)) dirs.push_back({d, "hull"});
+    }
+    // Drop hull directions that repeat an earlier candidate.
+    std::vector<std::pair<Vec3, std::string>> unique;
+    for (const auto& d : dirs) {
+        bool dup = std::any_of(unique.begin(), unique.end(), [&](const auto& u) { return dot(u.first, d.first) > std::cos(2 * M_PI / 180); });
+        if (!dup) unique.push_back(d);
+    }
+
+    o.candidates.resize(unique.size());
+    tbb::parallel_for(size_t(0), unique.size(), [&](size_t i) {
+        auto& c = o.candidates[i];
+        c.down = unique[i].first;
+        c.source = unique[i].second;
+        c.rotation = rotation_to_down(c.down);
+        c.overhang_area = rotated_overhang_area(mesh, c.rotation, p.critical_angle, p.layer_height);
+    });
+    std::stable_sort(o.candidates.begin(), o.candidates.end(),
+                     [](const auto& a, const auto& b) { return a.overhang_area < b.overhang_area - 1e-9; });
+
+    size_t n_eval = std::min(evaluate_best, o.candidates.size());
+    if (!support || n_eval <= 1) {
+        o.rotation = o.candidates[0].rotation;
+        o.decided_by = "overhang area";
+        return o;
+    }
+    for (size_t i = 0; i < n_eval; ++i) {
+        auto& c = o.candidates[i];
+        Mesh rotated = mesh;
+        for (auto& v : rotated.vertices) v = c.rotation.apply(v);
+        c.support = support(rotated);
+        c.evaluated = true;
+    }
+    size_t best = 0;
+    std::string why = "overhang area";
+    for (size_t i = 1; i < n_eval; ++i) {
+        const auto &a = o.candidates[i].support, &b = o.candidates[best].support;
+        double tol = 0.01 * std::max(a.volume, b.volume);
+        if (a.volume < b.volume - tol) best = i, why = "support volume";
+        else if (std::abs(a.volume - b.volume) <= tol) {
+            if (a.model_contacts < b.model_contacts) best = i, why = "model contacts";
+            else if (a.model_contacts == b.model_contacts && a.height < b.height - 1e-6) best = i, why = "height";
+        }
+    }
+    if (best != 0 && why == "overhang area") why = "support volume";
+    o.chosen = best;
+    o.rotation = o.candidates[best].rotation;
+    o.decided_by = why;
+    return o;
+}
+
+}  // namespace cs

@@ -1,0 +1,63 @@
+// Orientation: put the model where it needs the least support (paper Sec. 3, algorithm.md sec. 1).
+//
+// Candidate "down" directions are the outward normals of the convex hull's faces (the rest
+// positions of Alexander et al. 1998), near-parallel ones merged, plus the six axis directions and
+// the input orientation. Each is scored by overhang area; the few best are then judged by the
+// support they really need (the caller builds the tree: `support_volume`), ties broken by fewer
+// model contacts, then lower height. `keep` keeps the input exactly; `RX,RY,RZ` applies a rotation.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/geometry.hpp"
+#include "core/params.hpp"
+
+namespace cs {
+
+struct Rotation {
+    double m[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    Vec3 apply(const Vec3& v) const {
+        return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+                m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+    }
+};
+
+// What the tree built for one candidate pose.
+struct PoseSupport {
+    double volume = 0;
+    std::size_t model_contacts = 0;
+    double height = 0;
+};
+
+struct OrientCandidate {
+    Vec3 down;          // direction in input coordinates that becomes -Z
+    std::string source; // "input", "axis", "hull"
+    Rotation rotation;
+    double overhang_area = 0;
+    bool evaluated = false;  // support was built for it
+    PoseSupport support;
+};
+
+struct Orientation {
+    Rotation rotation;
+    std::string mode;        // auto | keep | euler
+    std::string decided_by;  // "kept", "given", "overhang area", "support volume", "model contacts", "height"
+    std::vector<OrientCandidate> candidates;  // ordered by overhang area
+    std::size_t chosen = 0;
+};
+
+// Outward normals of the convex hull faces of the points (CGAL convex_hull_3), unit length.
+std::vector<Vec3> hull_face_normals(const std::vector<Vec3>& points);
+
+// The rotation taking `down` to -Z (a minimal rotation; identity when already so).
+Rotation rotation_to_down(const Vec3& down);
+
+// Parses "auto", "keep" or "RX,RY,RZ" (degrees); throws ParameterError otherwise.
+// `support` is called for the best few candidates in auto mode (placed mesh -> what its tree needs).
+Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::string& mode,
+                               const std::function<PoseSupport(const Mesh& rotated)>& support,
+                               std::size_t evaluate_best = 4);
+
+}  // namespace cs

@@ -1,0 +1,12 @@
+# Writes the template library into a C++ header as a raw string (chunks stay under compiler limits).
+file(READ ${IN} text)
+string(LENGTH "${text}" n)
+set(out "// Generated from scad_templates/clever_support.scad: do not edit.\n#pragma once\nstatic const char* const kScadTemplate =\n")
+set(i 0)
+while(i LESS n)
+  string(SUBSTRING "${text}" ${i} 8000 chunk)
+  string(APPEND out "R\"CSDELIM(${chunk})CSDELIM\"\n")
+  math(EXPR i "${i} + 8000")
+endwhile()
+string(APPEND out ";\n")
+file(WRITE ${OUT} "${out}")

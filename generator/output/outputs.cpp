@@ -1,0 +1,206 @@
+#include "output/outputs.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/errors.hpp"
+#include "mesh/mesh_io.hpp"
+#include "output/scad.hpp"
+
+namespace cs {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+json params_json(const Params& p) {
+    return {{"preset", p.preset},
+            {"critical_angle_deg", p.critical_angle},
+            {"layer_height_mm", p.layer_height},
+            {"line_width_mm", p.line_width},
+            {"wall_thickness_mm", p.wall_thickness},
+            {"sampling_distance_mm", p.sampling_distance},
+            {"tip_length_mm", p.tip_length},
+            {"tip_diameter_mm", p.tip_diameter},
+            {"gap_mm", p.gap},
+            {"k", p.k},
+            {"d_min_mm", p.d_min},
+            {"d_max_mm", p.d_max},
+            {"strength_length_mm", p.strength_length},
+            {"feet", p.feet},
+            {"foot_height_mm", p.foot_height},
+            {"foot_extra_mm", p.foot_extra},
+            {"buildplate_only", !p.supports_on_model},
+            {"strategy", p.strategy},
+            {"model_clearance_mm", p.model_clearance}};
+}
+
+json supports_json(const Supports& s) {
+    const auto& st = s.sized.tree.stats;
+    size_t tips = 0;
+    for (const auto& b : s.bodies) tips += b.kind == BodyKind::Tip;
+    return {{"struts", s.sized.tree.struts.size()},
+            {"nodes", s.sized.tree.nodes.size()},
+            {"tips", tips},
+            {"merges", st.merges},
+            {"bed_contacts", st.bed_contacts},
+            {"model_contacts", st.model_contacts},
+            {"pillars", st.pillars},
+            {"touching_samples", st.touching},
+            {"clearance_fallbacks", st.clearance_fallbacks},
+            {"unrouted", st.unrouted},
+            {"bodies", s.bodies.size()},
+            {"total_strut_length_mm", s.length},
+            {"support_volume_mm3", s.volume},
+            {"worst_length_to_width", s.sized.worst_length_to_width},
+            {"strength_violations", s.sized.strength_violations}};
+}
+
+void make_dirs(const std::string& dir) {
+    std::string path;
+    size_t i = 0;
+    while (i != std::string::npos) {
+        i = dir.find('/', i + 1);
+        path = dir.substr(0, i);
+        if (path.empty()) continue;
+        struct stat st{};
+        if (stat(path.c_str(), &st) == 0) {
+            if (!S_ISDIR(st.st_mode))
+                throw OutputError(dir + ": cannot create the output directory: " + path +
+                                  " exists and is not a directory. Choose another --out directory.");
+            continue;
+        }
+        if (mkdir(path.c_str(), 0755) != 0 && errno != EEXIST)
+            throw OutputError(dir + ": cannot create the output directory: " + std::strerror(errno) +
+                              ". Choose another --out directory.");
+    }
+}
+
+}  // namespace
+
+std::string report_json(const Result& r, const Job& job) {
+    json j;
+    j["tool"] = "clever-support";
+    j["input"] = {{"file", job.input},
+                  {"sha256", r.input_sha256},
+                  {"triangles", r.repair.input_triangles},
+                  {"shells", r.repair.shells},
+                  {"repair",
+                   {{"welded_vertices", r.repair.welded_vertices},
+                    {"degenerate_removed", r.repair.degenerate_removed},
+                    {"duplicates_removed", r.repair.duplicates_removed},
+                    {"flipped", r.repair.flipped},
+                    {"boundary_edges", r.repair.boundary_edges},
+                    {"nonmanifold_edges", r.repair.nonmanifold_edges},
+                    {"self_intersecting_pairs", r.self_intersections}}}};
+    j["parameters"] = params_json(job.params);
+    const auto& pl = r.placement;
+    json rot = json::array();
+    for (const auto& row : r.orientation.rotation.m) rot.push_back({row[0], row[1], row[2]});
+    Vec3 size = bounding_box(r.model).size();
+    json cands = json::array();
+    for (size_t i = 0; i < r.orientation.candidates.size(); ++i) {
+        const auto& c = r.orientation.candidates[i];
+        json cj = {{"down", {c.down.x, c.down.y, c.down.z}}, {"source", c.source}, {"overhang_area_mm2", c.overhang_area}};
+        if (c.evaluated)
+            cj["support"] = {{"volume_mm3", c.support.volume}, {"model_contacts", c.support.model_contacts}, {"height_mm", c.support.height}};
+        cj["chosen"] = i == r.orientation.chosen;
+        cands.push_back(cj);
+    }
+    j["placement"] = {{"scale", pl.scale},
+                      {"orientation", r.orientation.mode},
+                      {"decided_by", r.orientation.decided_by},
+                      {"rotation", rot},
+                      {"translation_mm", {pl.translation.x, pl.translation.y, pl.translation.z}},
+                      {"size_mm", {size.x, size.y, size.z}},
+                      {"candidates", cands}};
+    j["model"] = {{"volume_mm3", signed_volume(r.model)}, {"triangles", r.model.faces.size()}};
+    size_t counts[4] = {0, 0, 0, 0};
+    for (const auto& s : r.samples.samples) ++counts[static_cast<int>(s.kind)];
+    j["overhangs"] = {{"area_mm2", r.samples.overhang_area},
+                      {"faces", r.samples.overhang_faces},
+                      {"samples", r.samples.samples.size()},
+                      {"face_samples", counts[0]},
+                      {"edge_samples", counts[1]},
+                      {"point_samples", counts[2]},
+                      {"centroid_samples", counts[3]}};
+    j["supports"] = supports_json(r.supports);
+    j["columns_baseline"] = supports_json(r.columns);
+    double saved_v = r.columns.volume > 0 ? 1 - r.supports.volume / r.columns.volume : 0;
+    double saved_l = r.columns.length > 0 ? 1 - r.supports.length / r.columns.length : 0;
+    j["saving_vs_columns"] = {{"volume", saved_v}, {"length", saved_l}};
+    json stages = json::object();
+    double total = 0;
+    for (const auto& s : r.stages) stages[s.name] = s.seconds, total += s.seconds;
+    j["seconds"] = stages;
+    j["seconds_total"] = total;
+    j["warnings"] = r.warnings;
+    return j.dump(2) + "\n";
+}
+
+std::vector<OutputFile> output_files(const Result& r, const Job& job, const std::string& version) {
+    std::vector<OutputFile> files;
+    Mesh supported = r.model;
+    append(supported, r.supports.mesh);
+    files.push_back({r.name + ".supported.stl", encode_stl(supported, "clever-support: model + supports")});
+    files.push_back({r.name + ".supports.stl", encode_stl(r.supports.mesh, "clever-support: supports")});
+    files.push_back({r.name + ".model.stl", encode_stl(r.model, "clever-support: placed model")});
+    files.push_back({r.name + ".report.json", report_json(r, job)});
+    ScadMeta meta{version, job.input, r.input_sha256, r.name + ".model.stl"};
+    files.push_back({r.name + ".scad", emit_scad(r.supports.sized, job.params, meta)});
+    files.push_back({"clever_support.scad", scad_template_library()});
+    return files;
+}
+
+void write_outputs(const std::string& dir, const std::vector<OutputFile>& files) {
+    make_dirs(dir);
+    std::vector<std::string> temps;
+    auto cleanup = [&] {
+        for (const auto& t : temps) ::unlink(t.c_str());
+    };
+    try {
+        for (const auto& f : files) {
+            std::string tmp = dir + "/." + f.name + ".partial";
+            temps.push_back(tmp);
+            write_file_atomic(tmp, f.content);
+        }
+    } catch (const OutputError& e) {
+        cleanup();
+        throw OutputError(std::string(e.what()).replace(0, 0, "writing outputs: "));
+    }
+    for (size_t i = 0; i < files.size(); ++i) {
+        std::string final_path = dir + "/" + files[i].name;
+        if (::rename(temps[i].c_str(), final_path.c_str()) != 0) {
+            int err = errno;
+            cleanup();
+            throw OutputError(final_path + ": cannot write: " + std::strerror(err) + ". Choose another --out directory.");
+        }
+    }
+}
+
+std::string human_summary(const Result& r, const std::string& dir) {
+    const auto& st = r.supports.sized.tree.stats;
+    std::string s;
+    Vec3 size = bounding_box(r.model).size();
+    s += fmt::format("{}: {:.1f} x {:.1f} x {:.1f} mm, orientation {} ({})\n", r.name, size.x, size.y, size.z,
+                     r.orientation.mode, r.orientation.decided_by);
+    s += fmt::format("  overhangs   {:.0f} mm^2, {} samples\n", r.samples.overhang_area, r.samples.samples.size());
+    s += fmt::format("  tree        {} struts, {} merges, {} on the bed, {} on the model, {} pillars\n",
+                     r.supports.sized.tree.struts.size(), st.merges, st.bed_contacts, st.model_contacts, st.pillars);
+    s += fmt::format("  support     {:.0f} mm^3, {:.0f} mm of struts\n", r.supports.volume, r.supports.length);
+    double saved = r.columns.volume > 0 ? 100 * (1 - r.supports.volume / r.columns.volume) : 0;
+    s += fmt::format("  vs columns  {:.0f} mm^3 -> {:.1f}% less support material\n", r.columns.volume, saved);
+    double total = 0;
+    for (const auto& x : r.stages) total += x.seconds;
+    s += fmt::format("  time        {:.2f} s\n", total);
+    s += fmt::format("  outputs     {}/{}.supported.stl (print this), .supports.stl, .model.stl, .report.json, .scad\n",
+                     dir, r.name);
+    return s;
+}
+
+}  // namespace cs

@@ -1,0 +1,35 @@
+// Everything a run writes, in `--out DIR`:
+//   <name>.supported.stl  model + support solids (each closed and outward-facing)
+//   <name>.supports.stl   the support solids alone
+//   <name>.model.stl      the placed (scaled, rotated, on-bed) model
+//   <name>.report.json    parameters, counts, lengths, volumes, the columns baseline, timings
+//   <name>.scad           parametric OpenSCAD (see output/scad.hpp) + clever_support.scad beside it
+// All files are written to temporaries first and renamed into place only when every one of them
+// was written, so a failure leaves no half-written output behind.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pipeline/pipeline.hpp"
+
+namespace cs {
+
+struct OutputFile {
+    std::string name;     // file name inside the output directory
+    std::string content;
+};
+
+std::string report_json(const Result& r, const Job& job);
+
+// The files of a run (without writing them).
+std::vector<OutputFile> output_files(const Result& r, const Job& job, const std::string& version);
+
+// Creates `dir` if needed and writes all files atomically as a set. Throws OutputError.
+void write_outputs(const std::string& dir, const std::vector<OutputFile>& files);
+
+// A short human summary of a run for stdout.
+std::string human_summary(const Result& r, const std::string& dir);
+
+}  // namespace cs

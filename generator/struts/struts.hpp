@@ -1,0 +1,68 @@
+// From a support tree to printable solids (algorithm.md section 4).
+//
+// size_struts gives every strut a width at each end:
+//   node width   leaf: d_min; one strut in: its lower width; several: merged_width (Murray's rule)
+//   upper width  max(node width, strength_width(run length, run angle)), clamped to [d_min, d_max]
+//   lower width  max(upper width, Eqn (1) k*l*alpha), clamped
+// so widths never shrink going down, grow at merges with what they carry, and no strut (or
+// unbranched run of struts down to its foot) is longer than the safe length for its width.
+//
+// build_bodies turns the sized tree into bodies: N-profile struts (a horizontal N swept along the
+// strut, a sheared prism tapering between its end widths; a solid square where the strut is too
+// narrow for an N with printable walls), tapered tips under every overhang sample and above every
+// model contact, feet on the bed and short pillars. body_mesh makes each a closed,
+// outward-facing triangle mesh.
+#pragma once
+
+#include <vector>
+
+#include "core/geometry.hpp"
+#include "core/params.hpp"
+#include "tree/tree.hpp"
+
+namespace cs {
+
+struct StrutSize {
+    double top_width = 0, bottom_width = 0;
+    double length = 0, angle = 0;         // mm, degrees from vertical
+    double run_length = 0, run_angle = 0;  // the unbranched run this strut belongs to
+};
+
+struct SizedTree {
+    SupportTree tree;
+    std::vector<double> node_width;  // width of the struts leaving each node at their top
+    std::vector<StrutSize> struts;   // parallel to tree.struts
+    double worst_length_to_width = 0;  // run length / width, worst strut
+    std::size_t strength_violations = 0;  // runs longer than safe even at d_max
+};
+
+SizedTree size_struts(SupportTree tree, const Params& p);
+
+enum class BodyKind { Strut, Tip, ContactTip, Foot, Pillar };
+enum class Profile { N, Square };
+
+// A prism between two horizontal squares (centred at bottom and top, side widths), filled with
+// the given profile. Every support solid is one of these.
+struct Body {
+    BodyKind kind;
+    Profile profile;
+    Vec3 bottom, top;
+    double bottom_width, top_width;
+};
+
+// Narrowest width at which an N-profile keeps open gaps between its walls.
+double min_n_width(const Params& p);
+
+// How far a foot may reach beyond its strut on each side, given the room to the model: it keeps
+// the model clearance, and is dropped (0) when less than a quarter millimetre is left.
+double foot_extra(const Params& p, double strut_width, double room);
+
+std::vector<Body> build_bodies(const SizedTree& sized, const Params& p);
+
+// Closed, outward-facing mesh of one body. `wall` is the N-profile wall thickness.
+Mesh body_mesh(const Body& b, double wall);
+
+// All bodies in one mesh (separate closed shells that overlap where they join).
+Mesh bodies_mesh(const std::vector<Body>& bodies, double wall);
+
+}  // namespace cs

@@ -1,0 +1,388 @@
+#include "tree/tree.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <unordered_map>
+
+#include "query/model_query.hpp"
+
+namespace cs {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+// Unit directions of the cone fan: the axis, then rings at half and 95% of the critical angle.
+// 95% keeps a contact tip (which sits above its model point) inside the cone.
+std::vector<Vec3> cone_fan(double critical_angle_deg) {
+    std::vector<Vec3> dirs{{0, 0, -1}};
+    for (double f : {0.5, 0.95}) {
+        double a = f * critical_angle_deg * kDeg;
+        for (int i = 0; i < 8; ++i) {
+            double phi = i * M_PI / 4 + (f < 0.9 ? 0 : M_PI / 8);
+            dirs.push_back({std::sin(a) * std::cos(phi), std::sin(a) * std::sin(phi), -std::cos(a)});
+        }
+    }
+    return dirs;
+}
+
+// Active nodes in a uniform XY hash grid, for the "other active points" of the sweep.
+class ActiveGrid {
+public:
+    explicit ActiveGrid(double cell) : cell_(cell) {}
+
+    void insert(int id, const Vec3& p) {
+        cells_[key(p)].push_back(id);
+        pos_[id] = list_.size();
+        list_.push_back(id);
+    }
+    void remove(int id, const Vec3& p) {
+        auto& v = cells_[key(p)];
+        v.erase(std::find(v.begin(), v.end(), id));
+        size_t i = pos_[id];
+        pos_[list_.back()] = i;
+        list_[i] = list_.back();
+        list_.pop_back();
+        pos_.erase(id);
+    }
+    size_t size() const { return list_.size(); }
+
+    // Calls visit(id) for active nodes in rings of cells around p until stop(ring_distance) says
+    // that nothing farther can matter; falls back to all nodes when rings outgrow the population.
+    template <typename Visit, typename Stop>
+    void visit_near(const Vec3& p, Visit visit, Stop stop) const {
+        long ci = idx(p.x), cj = idx(p.y);
+        for (long k = 0;; ++k) {
+            if ((2 * k + 1) * (2 * k + 1) > 4 * static_cast<long>(list_.size()) + 64) {
+                for (int id : list_) visit(id);
+                return;
+            }
+            for (long i = ci - k; i <= ci + k; ++i)
+                for (long j = cj - k; j <= cj + k; ++j) {
+                    if (std::max(std::abs(i - ci), std::abs(j - cj)) != k) continue;
+                    auto it = cells_.find(pack(i, j));
+                    if (it == cells_.end()) continue;
+                    for (int id : it->second) visit(id);
+                }
+            if (stop(k * cell_)) return;
+        }
+    }
+
+private:
+    long idx(double v) const { return static_cast<long>(std::floor(v / cell_)); }
+    static std::uint64_t pack(long i, long j) { return (std::uint64_t(i) << 32) ^ std::uint64_t(j & 0xffffffff); }
+    std::uint64_t key(const Vec3& p) const { return pack(idx(p.x), idx(p.y)); }
+
+    double cell_;
+    std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+    std::unordered_map<int, size_t> pos_;
+    std::vector<int> list_;
+};
+
+enum class Target { InCone, Merge, Model, Bed };
+
+struct Candidate {
+    double dist;
+    Target type;
+    int other = -1;  // the partner node of a merge
+    Vec3 point;      // merge point, contact node, or bed point
+    Vec3 contact;    // model point below a contact node
+};
+
+class Sweep {
+public:
+    Sweep(const ModelQuery& model, const Params& p)
+        : model_(model), p_(p), tan_c_(std::tan(p.critical_angle * kDeg)), fan_(cone_fan(p.critical_angle)),
+          grid_(std::max(2.0 * p.sampling_distance, 1.0)) {}
+
+    SupportTree run(const std::vector<Sample>& samples) {
+        hang_leaves(samples);
+        while (!heap_.empty()) {
+            auto [z, neg_id] = heap_.top();
+            heap_.pop();
+            int id = -neg_id;
+            if (!active_[id]) continue;
+            support(id);
+        }
+        return std::move(t_);
+    }
+
+private:
+    bool tree() const { return p_.strategy == "tree"; }
+
+    int add_node(const Vec3& p, NodeKind kind, const Vec3& contact, double width) {
+        t_.nodes.push_back({p, kind, contact});
+        width_.push_back(width);
+        active_.push_back(0);
+        return static_cast<int>(t_.nodes.size()) - 1;
+    }
+    void activate(int id) {
+        active_[id] = 1;
+        grid_.insert(id, t_.nodes[id].p);
+        heap_.push({t_.nodes[id].p.z, -id});
+    }
+    void retire(int id) {
+        active_[id] = 0;
+        grid_.remove(id, t_.nodes[id].p);
+    }
+    void connect(int top, int bottom) { t_.struts.push_back({top, bottom}); }
+
+    // Width a strut from node `from` to `to` will have at its lower end (an estimate for clearance).
+    double bottom_width(int from, const Vec3& to) const {
+        const Vec3& a = t_.nodes[from].p;
+        return std::max(width_[from], eqn1_width(p_, distance(a, to), angle_from_vertical_deg(a, to)));
+    }
+
+    void hang_leaves(const std::vector<Sample>& samples) {
+        const double tip = p_.gap + p_.tip_length;
+        for (const auto& s : samples) {
+            // Start just below the sample so the ray does not report the sample's own face.
+            auto hit = model_.first_hit(s.p - Vec3{0, 0, 1e-4}, {0, 0, -1});
+            double below = hit ? hit->point.z : 0.0;
+            double free = s.p.z - below;
+            if (free <= touching_space(p_)) {
+                ++t_.stats.touching;
+                continue;
+            }
+            if (free < 2 * tip) {
+                Vec3 bottom{s.p.x, s.p.y, hit ? below + p_.gap : 0.0};
+                t_.pillars.push_back({s.p - Vec3{0, 0, p_.gap}, bottom, hit.has_value()});
+                ++t_.stats.pillars;
+                continue;
+            }
+            activate(add_node(leaf_position(s.p - Vec3{0, 0, tip}), NodeKind::Leaf, s.p, p_.d_min));
+        }
+    }
+
+    // A leaf hangs straight below its sample unless the model is too close beside it (a sample
+    // next to a wall): then it moves away from the wall, slanting its tip, so the strut below it
+    // keeps its clearance. The shift stays well inside the cone and within half a sample spacing.
+    Vec3 leaf_position(const Vec3& below) const {
+        const double need = 0.5 * p_.d_min + p_.model_clearance + 0.05;
+        double d = std::sqrt(model_.squared_distance(below));
+        if (d >= need) return below;
+        Vec3 away = below - model_.closest_point(below);
+        away.z = 0;
+        if (norm(away) < 1e-9) return below;
+        double limit = std::min(0.5 * p_.sampling_distance, p_.tip_length * tan_c_ * 0.9);
+        return below + normalized(away) * std::min(need - d, limit);
+    }
+
+    // The node a strut ends at above model point c, reached from a node at height z_from.
+    Vec3 contact_node(const Vec3& c, double z_from) const {
+        // Normally a full tip above c; when the node is already close, half-way, so struts still descend.
+        double up = std::min(p_.gap + p_.tip_length, 0.5 * std::max(0.0, z_from - c.z));
+        return c + Vec3{0, 0, up};
+    }
+
+    // A tip can stand on a face that slopes at most 45 degrees; steeper, it would slide off and
+    // its tip would dig into the wall.
+    bool can_stand_on(std::size_t face) const {
+        const Mesh& m = model_.mesh();
+        return normalized(face_normal_unnormalized(m, m.faces[face])).z >= std::cos(M_PI / 4);
+    }
+
+    bool in_cone(const Vec3& apex, const Vec3& q) const {
+        return apex.z > q.z && horizontal_distance(apex, q) <= (apex.z - q.z) * tan_c_ * (1 + 1e-9);
+    }
+
+    void collect_contacts(int id, std::vector<Candidate>& out) const {
+        const Vec3& a = t_.nodes[id].p;
+        bool slanted = tree() || !p_.supports_on_model;
+        for (size_t i = 0; i < fan_.size(); ++i) {
+            if (i > 0 && !slanted) break;
+            const Vec3& d = fan_[i];
+            auto hit = model_.first_hit(a, d);
+            if (hit) {
+                if (!p_.supports_on_model) continue;
+                if (i > 0 && !tree()) continue;
+                if (!can_stand_on(hit->face)) continue;
+                Vec3 node = contact_node(hit->point, a.z);
+                if (i > 0 && !in_cone(a, node)) continue;
+                out.push_back({hit->distance, Target::Model, -1, node, hit->point});
+            } else if (i == 0 || !p_.supports_on_model) {
+                double len = a.z / -d.z;
+                out.push_back({len, Target::Bed, -1, a + d * len, {}});
+            }
+        }
+    }
+
+    void collect_merges(int id, double bound, std::vector<Candidate>& out) {
+        const Vec3 a = t_.nodes[id].p;
+        // A partner at horizontal distance D gives a strut of at least D * lb (algorithm.md section 3).
+        const double lb = std::min(1.0, 1.0 / (2 * std::sin(p_.critical_angle * kDeg)));
+        const size_t keep = 6;
+        std::vector<Candidate> found;
+        auto kth = [&] {
+            if (found.size() < keep) return bound;
+            std::nth_element(found.begin(), found.begin() + (keep - 1), found.end(),
+                             [](const Candidate& x, const Candidate& y) { return x.dist < y.dist; });
+            found.resize(keep);
+            return std::min(bound, found.back().dist);
+        };
+        grid_.visit_near(
+            a,
+            [&](int q) {
+                if (q == id) return;
+                const Vec3& b = t_.nodes[q].p;
+                if (b.z > a.z || (b.z == a.z && q < id)) return;  // only nodes the sweep has not passed
+                Vec3 s = merge_point(a, b, tan_c_);
+                if (s.z < p_.layer_height) return;
+                double d = distance(a, s);
+                if (d < 1e-9 || d >= bound) return;
+                found.push_back({d, s == b ? Target::InCone : Target::Merge, q, s, {}});
+            },
+            [&](double ring) { return ring * lb >= kth(); });
+        for (auto& c : found) out.push_back(c);
+    }
+
+    bool clear(int from, const Vec3& to) const {
+        return strut_is_clear(model_, t_.nodes[from].p, width_[from], to, bottom_width(from, to), p_.model_clearance);
+    }
+
+    void support(int id) {
+        std::vector<Candidate> cands;
+        collect_contacts(id, cands);
+        double bound = INFINITY;
+        for (const auto& c : cands) bound = std::min(bound, c.dist);
+        if (tree()) collect_merges(id, bound * (1 + 1e-9), cands);
+        std::sort(cands.begin(), cands.end(), [](const Candidate& x, const Candidate& y) {
+            if (x.dist != y.dist) return x.dist < y.dist;
+            if (x.type != y.type) return x.type < y.type;
+            return x.other < y.other;
+        });
+        for (const auto& c : cands) {
+            if (!clear(id, c.point)) continue;
+            if (c.type == Target::Merge && !clear(c.other, c.point)) continue;
+            accept(id, c);
+            return;
+        }
+        if (!p_.supports_on_model && route_around(id)) return;
+        // Nothing is clear: the vertical (its axis is free by construction) is the least bad.
+        for (const auto& c : cands) {
+            if ((c.type == Target::Model || c.type == Target::Bed) && c.point.x == t_.nodes[id].p.x &&
+                c.point.y == t_.nodes[id].p.y) {
+                ++t_.stats.clearance_fallbacks;
+                accept(id, c);
+                return;
+            }
+        }
+        // buildplate-only with the vertical blocked and no way around: land on the model.
+        const Vec3 a = t_.nodes[id].p;
+        auto hit = model_.first_hit(a, {0, 0, -1});
+        ++t_.stats.unrouted;
+        if (hit) accept(id, {hit->distance, Target::Model, -1, contact_node(hit->point, a.z), hit->point});
+        else accept(id, {a.z, Target::Bed, -1, {a.x, a.y, 0}, {}});
+    }
+
+    void accept(int id, const Candidate& c) {
+        retire(id);
+        switch (c.type) {
+            case Target::InCone:
+                connect(id, c.other);
+                width_[c.other] = merged_width(p_, {width_[c.other], bottom_width(id, c.point)});
+                ++t_.stats.merges;
+                break;
+            case Target::Merge: {
+                double w = merged_width(p_, {bottom_width(id, c.point), bottom_width(c.other, c.point)});
+                retire(c.other);
+                int s = add_node(c.point, NodeKind::Merge, {}, w);
+                connect(id, s);
+                connect(c.other, s);
+                activate(s);
+                ++t_.stats.merges;
+                break;
+            }
+            case Target::Model:
+                connect(id, add_node(c.point, NodeKind::ModelContact, c.contact, bottom_width(id, c.point)));
+                ++t_.stats.model_contacts;
+                break;
+            case Target::Bed: {
+                int b = add_node(c.point, NodeKind::Bed, c.point, bottom_width(id, c.point));
+                // Room for a foot: distance to the model from the middle of where a foot would be.
+                Vec3 probe = c.point + Vec3{0, 0, 0.5 * p_.foot_height};
+                t_.nodes[b].room = std::sqrt(model_.squared_distance(probe));
+                connect(id, b);
+                ++t_.stats.bed_contacts;
+                break;
+            }
+        }
+    }
+
+    // buildplate-only: step down along the fan direction that gets lowest before meeting the model.
+    bool route_around(int id) {
+        const Vec3 a = t_.nodes[id].p;
+        double best_drop = 0;
+        Vec3 best;
+        for (const auto& d : fan_) {
+            auto hit = model_.first_hit(a, d);
+            if (!hit) continue;  // would have been a bed candidate
+            double margin = 0.5 * width_[id] + p_.model_clearance + p_.d_min;
+            double len = std::min(hit->distance - margin / std::max(0.2, -d.z), 20.0);
+            if (len <= 0) continue;
+            Vec3 to = a + d * len;
+            if (a.z - to.z > best_drop + 1e-9 && clear(id, to)) best_drop = a.z - to.z, best = to;
+        }
+        if (best_drop < 0.5) return false;
+        retire(id);
+        int c = add_node(best, NodeKind::Chain, {}, bottom_width(id, best));
+        connect(id, c);
+        activate(c);
+        return true;
+    }
+
+    const ModelQuery& model_;
+    const Params& p_;
+    double tan_c_;
+    std::vector<Vec3> fan_;
+    SupportTree t_;
+    std::vector<double> width_;  // estimated width at each node, for clearance
+    std::vector<char> active_;
+    ActiveGrid grid_;
+    std::priority_queue<std::pair<double, int>> heap_;  // highest first, then lowest id
+};
+
+}  // namespace
+
+double SupportTree::total_length() const {
+    double l = 0;
+    for (const auto& s : struts) l += distance(nodes[s.top].p, nodes[s.bottom].p);
+    return l;
+}
+
+double touching_space(const Params& p) { return 2 * p.gap + p.layer_height; }
+
+Vec3 merge_point(const Vec3& a, const Vec3& b, double tan_c) {
+    double D = horizontal_distance(a, b);
+    double dz = a.z - b.z;
+    if (D <= dz * tan_c) return b;
+    double zs = (a.z + b.z - D / tan_c) / 2;
+    double h = (a.z - zs) * tan_c;
+    return {a.x + (b.x - a.x) / D * h, a.y + (b.y - a.y) / D * h, zs};
+}
+
+std::optional<Vec3> first_hit_in_cone(const ModelQuery& model, const Vec3& apex, double critical_angle_deg) {
+    std::optional<Vec3> best;
+    double best_d = INFINITY;
+    for (const auto& d : cone_fan(critical_angle_deg)) {
+        auto hit = model.first_hit(apex, d);
+        if (hit && hit->distance < best_d) best_d = hit->distance, best = hit->point;
+    }
+    return best;
+}
+
+bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance) {
+    if (model.segment_hits(a, b)) return false;
+    double ra = 0.5 * wa + clearance, rb = 0.5 * wb + clearance;
+    for (auto [sx, sy] : {std::pair{1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
+        Vec3 ea = a + Vec3{sx * ra, sy * ra, 0}, eb = b + Vec3{sx * rb, sy * rb, 0};
+        if (model.segment_hits(ea, eb)) return false;
+    }
+    return true;
+}
+
+SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p) {
+    return Sweep(model, p).run(samples);
+}
+
+}  // namespace cs

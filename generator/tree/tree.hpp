@@ -1,0 +1,86 @@
+// The support tree: greedy cone merging, top down (algorithm.md section 3).
+//
+// Every overhang sample hangs a leaf node one tip below it. Sweeping from the highest active node
+// down, each node takes the nearest of: a meeting point with another active node's cone
+// (merge_point), the first model point in its cone (first_hit_in_cone), or the bed straight below.
+// Each candidate strut is tried against the model with clearance (strut_is_clear); the first that
+// passes wins. With `supports_on_model = false` the model is an obstacle only and nodes route down
+// to the bed around it. The `columns` strategy is the same sweep without merges or slanted struts:
+// plain vertical columns, the baseline every run reports against.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/geometry.hpp"
+#include "core/params.hpp"
+#include "overhang/overhang.hpp"
+
+namespace cs {
+
+class ModelQuery;
+
+enum class NodeKind {
+    Leaf,          // below an overhang sample, carries a tip up to it
+    Merge,         // where two cones meet
+    Chain,         // a bend on the way around the model (buildplate-only routing)
+    Bed,           // on z = 0
+    ModelContact,  // above a point of the model; a tip goes down to it
+};
+
+struct Node {
+    Vec3 p;
+    NodeKind kind = NodeKind::Leaf;
+    Vec3 contact;  // Leaf: the overhang sample; ModelContact: the model point below
+    double room = INFINITY;  // Bed: horizontal distance to the model near the bed (limits a foot)
+};
+
+struct Strut {
+    int top = -1, bottom = -1;  // node indices; top.z > bottom.z
+};
+
+// A support too short for a tree: the overhang hangs less than one tip above the bed or the model.
+struct Pillar {
+    Vec3 top;     // one gap below the overhang sample
+    Vec3 bottom;  // on the bed, or one gap above the model
+    bool on_model = false;
+};
+
+struct TreeStats {
+    std::size_t merges = 0, bed_contacts = 0, model_contacts = 0, pillars = 0, touching = 0;
+    std::size_t clearance_fallbacks = 0;  // no candidate was clear: took the vertical anyway
+    std::size_t unrouted = 0;             // buildplate-only: could not reach the bed, landed on the model
+};
+
+struct SupportTree {
+    std::vector<Node> nodes;
+    std::vector<Strut> struts;
+    std::vector<Pillar> pillars;
+    TreeStats stats;
+
+    double total_length() const;
+};
+
+// Free vertical space below an overhang under which no support is built: the overhang is printed
+// on what is below it (two z gaps and a layer).
+double touching_space(const Params& p);
+
+// Highest point where the downward cones of apexes a and b meet (algorithm.md section 3):
+// b itself when it lies in a's cone, else the top of the cones' intersection. a must not be lower
+// than b. tan_c = tan(critical angle).
+Vec3 merge_point(const Vec3& a, const Vec3& b, double tan_c);
+
+// Nearest model point inside the downward cone at `apex` that a straight strut can reach,
+// approximated by a fan of rays (the axis and two rings of eight). nullopt when the cone sees
+// only the bed.
+std::optional<Vec3> first_hit_in_cone(const ModelQuery& model, const Vec3& apex, double critical_angle_deg);
+
+// Is a strut from a (width wa) down to b (width wb) at least `clearance` away from the model?
+// Checks the axis and the four edges of its square envelope.
+bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance);
+
+// Grows the support tree (or the columns baseline, by p.strategy) for the given samples.
+SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p);
+
+}  // namespace cs
