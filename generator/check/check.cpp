@@ -126,7 +126,9 @@ CheckResult check_supports(const Mesh& model, const Mesh& supports, const Params
     r.bodies = shells.size();
 
     std::vector<Vec3> contacts;
-    for (const auto& s : shells) {
+    std::vector<char> is_tip(shells.size(), 0);
+    for (size_t si = 0; si < shells.size(); ++si) {
+        const Shell& s = shells[si];
         if (!is_closed_and_consistent(s.mesh)) {
             ++r.open_bodies;
             if (r.flagged.size() < 10) r.flagged.push_back({s.bottom, s.top});
@@ -137,17 +139,23 @@ CheckResult check_supports(const Mesh& model, const Mesh& supports, const Params
         if (angle > p.critical_angle + o.angle_tolerance) ++r.steep_bodies;
         double w = std::min(s.top_width, s.bottom_width);
         if (w > 0) r.worst_length_to_width = std::max(r.worst_length_to_width, distance(s.top, s.bottom) / w);
-        // Contacts: top vertices with the model just above them.
-        for (const auto& v : s.mesh.vertices) {
-            if (v.z < s.zmax - 1e-5) continue;
-            auto hit = q.first_hit(v, {0, 0, 1});
-            if (hit && hit->distance <= p.gap + 0.05) contacts.push_back(v);
+        // A contact: the centre of a solid's top with the model just above it (about one z gap).
+        auto hit = q.first_hit(s.top, {0, 0, 1});
+        if (hit && hit->distance <= contact_tolerance(p)) {
+            contacts.push_back(s.top);
+            is_tip[si] = 1;
         }
+        // A tip standing on the model: its bottom is about a gap above the model.
+        auto below = q.first_hit(s.bottom + Vec3{0, 0, 1e-4}, {0, 0, -1});
+        if (s.zmin > 0.05 && below && below->distance <= contact_tolerance(p)) is_tip[si] = 1;
     }
 
     // Penetration: edges that cross the model surface, or shells lying wholly inside it.
+    // Tips touch the model by design: only what lies beyond them is judged.
     if (r.model_closed) {
-        for (const auto& s : shells) {
+        for (size_t si = 0; si < shells.size(); ++si) {
+            const Shell& s = shells[si];
+            if (is_tip[si]) continue;
             double depth = 0;
             std::map<std::pair<std::uint32_t, std::uint32_t>, bool> seen;
             for (const auto& f : s.mesh.faces)
@@ -219,21 +227,34 @@ CheckResult check_supports(const Mesh& model, const Mesh& supports, const Params
     }
     for (const auto& s : sample_overhangs(model, oo).samples)
         if (s.kind == SampleKind::Point) points.push_back(s.p);
-    PointGrid grid{std::max(reach, 0.5)};
-    for (const auto& c : contacts) grid.add(c);
+    // Points resting on what is below (or with material right below) anchor the overhang around
+    // them as a contact does: the printer bridges from them.
     const double touch = touching_space(p);
+    const Vec3 just_below{0, 0, 0.01};
+    PointGrid contact_grid{std::max(reach, 0.5)}, anchor_grid{std::max(reach, 0.5)};
+    for (const auto& c : contacts) contact_grid.add(c);
+    std::vector<Vec3> need;
     for (const auto& x : points) {
         if (x.z < p.layer_height) continue;
+        // Material right below (overlapping shells): not a surface of the print.
+        if (q.inside(x - just_below)) {
+            anchor_grid.add(x);
+            continue;
+        }
         ++r.overhang_points;
-        auto hit = q.first_hit(x - Vec3{0, 0, 1e-4}, {0, 0, -1});
+        auto hit = q.first_hit(x - just_below, {0, 0, -1});
         double free = x.z - (hit ? hit->point.z : 0.0);
         if (free <= touch) {
             ++r.exempt;
+            anchor_grid.add(x);
             continue;
         }
-        bool ok = grid.any_near(x, reach, [&](const Vec3& c) {
-            return c.z <= x.z + 1e-6 && horizontal_distance(c, x) <= reach && distance(c, x) <= reach + p.gap + 1e-6;
-        });
+        need.push_back(x);
+    }
+    for (const auto& x : need) {
+        auto near = [&](const Vec3& c) { return horizontal_distance(c, x) <= reach && distance(c, x) <= reach + p.gap + 1e-6; };
+        bool ok = contact_grid.any_near(x, reach, [&](const Vec3& c) { return c.z <= x.z + 1e-6 && near(c); }) ||
+                  anchor_grid.any_near(x, reach, near);
         if (ok) ++r.covered;
         else if (r.uncovered.size() < 10) r.uncovered.push_back(x);
     }

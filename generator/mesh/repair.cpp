@@ -190,6 +190,7 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
             const auto& f = m.faces[fi];
             volume[p] += dot(m.vertices[f[0]], cross(m.vertices[f[1]], m.vertices[f[2]])) / 6.0;
         }
+    std::vector<char> dropped(m.faces.size(), 0);
     for (int p = 0; p < patches; ++p) {
         int depth = 0;
         if (patches > 1 && patches <= 64) {
@@ -197,8 +198,18 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
             for (int q = 0; q < patches; ++q)
                 if (q != p && std::abs(volume[q]) > 0 && inside_by_parity(m, patch_faces[q], probe)) ++depth;
         }
-        bool want_positive = depth % 2 == 0;
-        if ((volume[p] < 0) == want_positive) {
+        // A shell nested inside another keeps its orientation: facing in, it is a cavity as
+        // authored; facing out, it is a solid overlapping the other (slicers unite those).
+        // Only a free-standing shell that faces in is turned.
+        bool nested = depth % 2 == 1;
+        if (nested && volume[p] > 0) {
+            // A solid wholly inside another adds nothing printable, and its faces are not
+            // surfaces of the print: they must not count as overhangs. Drop it.
+            for (size_t fi : patch_faces[p]) dropped[fi] = 1;
+            ++r.inner_shells_removed;
+            continue;
+        }
+        if (!nested && volume[p] < 0) {
             for (size_t fi : patch_faces[p]) {
                 std::swap(m.faces[fi][1], m.faces[fi][2]);
                 flip[fi] = !flip[fi];
@@ -206,7 +217,14 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
             volume[p] = -volume[p];
         }
     }
-    r.flipped = static_cast<size_t>(std::count(flip.begin(), flip.end(), 1));
+    r.flipped = 0;
+    for (size_t i = 0; i < m.faces.size(); ++i) r.flipped += flip[i] && !dropped[i];
+    if (r.inner_shells_removed) {
+        std::vector<Triangle> kept;
+        for (size_t i = 0; i < m.faces.size(); ++i)
+            if (!dropped[i]) kept.push_back(m.faces[i]);
+        m.faces = std::move(kept);
+    }
 
     int shells = 0;
     face_components(m, shells);
@@ -238,6 +256,7 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
     warn(r.degenerate_removed, "degenerate triangles removed");
     warn(r.duplicates_removed, "duplicate triangles removed");
     warn(r.flipped, "triangles flipped to face outward");
+    warn(r.inner_shells_removed, "shells lying wholly inside another solid removed (they are not surfaces of the print)");
     warn(r.boundary_edges, "open (boundary) edges: the mesh has holes; overhangs near them are still supported");
     warn(r.nonmanifold_edges, "non-manifold edges (shared by more than two triangles); carried on");
     return out;

@@ -1,8 +1,8 @@
 // Making a raw triangle soup into a mesh the pipeline can trust, and putting it on the bed.
 //
 // repair_mesh welds identical vertices, drops degenerate and duplicate triangles, orients every
-// shell consistently and outward (a shell nested inside another keeps facing inward: it is a
-// cavity), and counts what it cannot fix (holes, non-manifold edges). Every change is reported as
+// shell consistently and outward (a shell nested inside another keeps its orientation: facing in it
+// is a cavity, facing out a solid overlapping the other), and counts what it cannot fix (holes, non-manifold edges). Every change is reported as
 // a warning; only a mesh with nothing printable left is an InputError.
 #pragma once
 
@@ -21,6 +21,7 @@ struct RepairReport {
     size_t flipped = 0;               // triangles turned to face outward
     size_t boundary_edges = 0;        // edges of holes
     size_t nonmanifold_edges = 0;     // edges shared by more than two triangles
+    size_t inner_shells_removed = 0;  // solids wholly inside another solid
     size_t shells = 0;
     std::vector<std::string> warnings;
 };

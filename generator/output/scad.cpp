@@ -26,6 +26,7 @@ int kind_code(NodeKind k) {
         case NodeKind::Chain: return 2;
         case NodeKind::Bed: return 3;
         case NodeKind::ModelContact: return 4;
+        case NodeKind::Dropped: return 5;
     }
     return 1;
 }
@@ -122,7 +123,7 @@ std::string emit_scad(const SizedTree& sized, const Params& p, const ScadMeta& m
     bool first = true;
     for (size_t i = 0; i < t.nodes.size(); ++i) {
         if (t.nodes[i].kind != NodeKind::Leaf) continue;
-        s += std::string(first ? "" : ",") + "\n  [" + std::to_string(i) + "," + pt(t.nodes[i].contact - Vec3{0, 0, p.gap}) + "," +
+        s += std::string(first ? "" : ",") + "\n  [" + std::to_string(i) + "," + pt(t.nodes[i].tip) + "," +
              std::to_string(out[i]) + "]";
         first = false;
     }

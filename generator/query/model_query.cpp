@@ -73,10 +73,19 @@ Vec3 ModelQuery::closest_point(const Vec3& p) const { return vec(impl_->tree.clo
 bool ModelQuery::inside(const Vec3& p) const {
     // Irrational-looking directions avoid rays that graze edges of axis-aligned CAD meshes.
     static const K::Vector_3 dirs[3] = {{0.5773, 0.5781, 0.5767}, {-0.7071, 0.0123, 0.7070}, {0.0211, -0.8011, -0.5982}};
+    // Winding number along each ray (exits minus entries), not parity: overlapping solids, which
+    // slicers unite, count as inside.
     int votes = 0;
+    std::vector<Tree::Primitive_id> hits;
     for (const auto& d : dirs) {
-        std::size_t n = impl_->tree.number_of_intersected_primitives(K::Ray_3(pt(p), d));
-        votes += n % 2;
+        hits.clear();
+        impl_->tree.all_intersected_primitives(K::Ray_3(pt(p), d), std::back_inserter(hits));
+        int winding = 0;
+        for (auto id : hits) {
+            double s = CGAL::scalar_product(id->supporting_plane().orthogonal_vector(), d);
+            winding += s > 0 ? 1 : (s < 0 ? -1 : 0);
+        }
+        votes += winding > 0;
     }
     return votes >= 2;
 }

@@ -31,8 +31,8 @@ public:
     bool segment_hits(const Vec3& a, const Vec3& b) const;
     double squared_distance(const Vec3& p) const;
     Vec3 closest_point(const Vec3& p) const;
-    // Inside the solid, by the majority of three ray-parity votes (sound for closed meshes,
-    // a fair guess for meshes with small holes).
+    // Inside the solid, by the majority of three rays' winding numbers (sound for closed meshes,
+    // overlapping shells included; a fair guess for meshes with small holes).
     bool inside(const Vec3& p) const;
 
     const Mesh& mesh() const { return model_; }

@@ -122,7 +122,7 @@ std::vector<Body> build_bodies(const SizedTree& sized, const Params& p) {
     for (size_t v = 0; v < nodes.size(); ++v) {
         const Node& nd = nodes[v];
         if (nd.kind == NodeKind::Leaf) {
-            Vec3 top = nd.contact - Vec3{0, 0, p.gap};
+            const Vec3& top = nd.tip;
             bodies.push_back({BodyKind::Tip, Profile::Square, nd.p - Vec3{0, 0, overlap}, top, outgoing_width[v],
                               p.tip_diameter});
         } else if (nd.kind == NodeKind::ModelContact) {

@@ -79,7 +79,8 @@ private:
     std::vector<int> list_;
 };
 
-enum class Target { InCone, Merge, Model, Bed };
+// SteepModel: a model point too steep to stand on, used only when nothing else fits.
+enum class Target { InCone, Merge, Model, Bed, SteepModel };
 
 struct Candidate {
     double dist;
@@ -114,6 +115,7 @@ private:
         t_.nodes.push_back({p, kind, contact});
         width_.push_back(width);
         active_.push_back(0);
+        incoming_.push_back(0);
         return static_cast<int>(t_.nodes.size()) - 1;
     }
     void activate(int id) {
@@ -125,7 +127,10 @@ private:
         active_[id] = 0;
         grid_.remove(id, t_.nodes[id].p);
     }
-    void connect(int top, int bottom) { t_.struts.push_back({top, bottom}); }
+    void connect(int top, int bottom) {
+        t_.struts.push_back({top, bottom});
+        ++incoming_[bottom];
+    }
 
     // Width a strut from node `from` to `to` will have at its lower end (an estimate for clearance).
     double bottom_width(int from, const Vec3& to) const {
@@ -137,7 +142,13 @@ private:
         const double tip = p_.gap + p_.tip_length;
         for (const auto& s : samples) {
             // Start just below the sample so the ray does not report the sample's own face.
-            auto hit = model_.first_hit(s.p - Vec3{0, 0, 1e-4}, {0, 0, -1});
+            const Vec3 start = s.p - Vec3{0, 0, 1e-4};
+            // A face with material right below it (overlapping shells) is no overhang.
+            if (model_.inside(s.p - Vec3{0, 0, 0.01})) {
+                ++t_.stats.internal;
+                continue;
+            }
+            auto hit = model_.first_hit(start, {0, 0, -1});
             double below = hit ? hit->point.z : 0.0;
             double free = s.p.z - below;
             if (free <= touching_space(p_)) {
@@ -150,9 +161,45 @@ private:
                 ++t_.stats.pillars;
                 continue;
             }
-            activate(add_node(leaf_position(s.p - Vec3{0, 0, tip}), NodeKind::Leaf, s.p, p_.d_min));
+            int leaf = add_node(leaf_position(s.p - Vec3{0, 0, tip}), NodeKind::Leaf, s.p, p_.d_min);
+            t_.nodes[leaf].tip = tip_top(s.p);
+            // A leaf in a crevice that no strut can leave is dropped now, before others merge into it.
+            if (!can_escape(leaf)) {
+                t_.nodes[leaf].kind = NodeKind::Dropped;
+                ++t_.stats.dropped;
+                continue;
+            }
+            activate(leaf);
         }
     }
+
+    // The top of a tip: one gap below the sample, lowered further where a corner of its square top
+    // would come closer to a sloping overhang than the gap.
+    Vec3 tip_top(const Vec3& sample) const {
+        Vec3 top = sample - Vec3{0, 0, p_.gap};
+        const double h = 0.5 * p_.tip_diameter;
+        double lower = 0;
+        for (auto [sx, sy] : {std::pair{1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
+            Vec3 corner = sample + Vec3{sx * h, sy * h, -p_.gap - 1.0};
+            auto hit = model_.first_hit(corner, {0, 0, 1});
+            if (hit) lower = std::max(lower, p_.gap - (hit->point.z - top.z));
+        }
+        return top - Vec3{0, 0, std::min(lower, contact_tolerance(p_) - p_.gap - 0.05)};
+    }
+
+    // Can a strut of width w leave point a at all: is a short strut along some fan direction
+    // clear? Asked of leaves, merge points and bends before they are made, so no node is put
+    // where nothing can carry it down.
+    bool can_escape(const Vec3& a, double w) const {
+        for (const auto& d : fan_) {
+            double len = std::min(2.0, a.z / -d.z);
+            Vec3 to = a + d * len;
+            double wb = std::max(w, eqn1_width(p_, len, angle_from_vertical_deg(a, to)));
+            if (strut_is_clear(model_, a, w, to, wb, 0.0)) return true;
+        }
+        return false;
+    }
+    bool can_escape(int id) const { return can_escape(t_.nodes[id].p, width_[id]); }
 
     // A leaf hangs straight below its sample unless the model is too close beside it (a sample
     // next to a wall): then it moves away from the wall, slanting its tip, so the strut below it
@@ -165,7 +212,10 @@ private:
         away.z = 0;
         if (norm(away) < 1e-9) return below;
         double limit = std::min(0.5 * p_.sampling_distance, p_.tip_length * tan_c_ * 0.9);
-        return below + normalized(away) * std::min(need - d, limit);
+        Vec3 moved = below + normalized(away) * std::min(need - d, limit);
+        // In a slot narrower than a strut, moving off one wall meets the other: stay put.
+        if (model_.segment_hits(below, moved) || model_.inside(moved)) return below;
+        return moved;
     }
 
     // The node a strut ends at above model point c, reached from a node at height z_from.
@@ -196,10 +246,10 @@ private:
             if (hit) {
                 if (!p_.supports_on_model) continue;
                 if (i > 0 && !tree()) continue;
-                if (!can_stand_on(hit->face)) continue;
                 Vec3 node = contact_node(hit->point, a.z);
                 if (i > 0 && !in_cone(a, node)) continue;
-                out.push_back({hit->distance, Target::Model, -1, node, hit->point});
+                out.push_back({hit->distance, can_stand_on(hit->face) ? Target::Model : Target::SteepModel, -1, node,
+                               hit->point});
             } else if (i == 0 || !p_.supports_on_model) {
                 double len = a.z / -d.z;
                 out.push_back({len, Target::Bed, -1, a + d * len, {}});
@@ -236,8 +286,9 @@ private:
         for (auto& c : found) out.push_back(c);
     }
 
-    bool clear(int from, const Vec3& to) const {
-        return strut_is_clear(model_, t_.nodes[from].p, width_[from], to, bottom_width(from, to), p_.model_clearance);
+    bool clear(int from, const Vec3& to, double clearance = -1) const {
+        return strut_is_clear(model_, t_.nodes[from].p, width_[from], to, bottom_width(from, to),
+                              clearance < 0 ? p_.model_clearance : clearance);
     }
 
     void support(int id) {
@@ -252,15 +303,37 @@ private:
             return x.other < y.other;
         });
         for (const auto& c : cands) {
-            if (!clear(id, c.point)) continue;
-            if (c.type == Target::Merge && !clear(c.other, c.point)) continue;
+            if (c.type == Target::SteepModel || !clear(id, c.point)) continue;
+            if (c.type == Target::Merge && (!clear(c.other, c.point) || !can_escape(c.point, merged_estimate(id, c))))
+                continue;
             accept(id, c);
             return;
         }
-        if (!p_.supports_on_model && route_around(id)) return;
+        if (step_down(id)) return;
+        // In a tight spot, give up the extra air before giving up clearance altogether.
+        for (const auto& c : cands) {
+            if (!clear(id, c.point, 0.0)) continue;
+            if (c.type == Target::Merge && !clear(c.other, c.point, 0.0)) continue;
+            ++t_.stats.tight;
+            accept(id, c);
+            return;
+        }
+        if (step_down(id, 0.0)) {
+            ++t_.stats.tight;
+            return;
+        }
+        // A leaf with nothing clear sits in a crevice too tight for any strut: drop it rather than
+        // print a support fused into the model. Its neighbours usually cover its spot (check says).
+        if (t_.nodes[id].kind == NodeKind::Leaf && incoming_[id] == 0) {
+            retire(id);
+            t_.nodes[id].kind = NodeKind::Dropped;
+            ++t_.stats.dropped;
+            return;
+        }
         // Nothing is clear: the vertical (its axis is free by construction) is the least bad.
         for (const auto& c : cands) {
-            if ((c.type == Target::Model || c.type == Target::Bed) && c.point.x == t_.nodes[id].p.x &&
+            if ((c.type == Target::Model || c.type == Target::SteepModel || c.type == Target::Bed) &&
+                c.point.x == t_.nodes[id].p.x &&
                 c.point.y == t_.nodes[id].p.y) {
                 ++t_.stats.clearance_fallbacks;
                 accept(id, c);
@@ -270,9 +343,13 @@ private:
         // buildplate-only with the vertical blocked and no way around: land on the model.
         const Vec3 a = t_.nodes[id].p;
         auto hit = model_.first_hit(a, {0, 0, -1});
-        ++t_.stats.unrouted;
+        ++(p_.supports_on_model ? t_.stats.clearance_fallbacks : t_.stats.unrouted);
         if (hit) accept(id, {hit->distance, Target::Model, -1, contact_node(hit->point, a.z), hit->point});
         else accept(id, {a.z, Target::Bed, -1, {a.x, a.y, 0}, {}});
+    }
+
+    double merged_estimate(int id, const Candidate& c) const {
+        return merged_width(p_, {bottom_width(id, c.point), bottom_width(c.other, c.point)});
     }
 
     void accept(int id, const Candidate& c) {
@@ -294,6 +371,7 @@ private:
                 break;
             }
             case Target::Model:
+            case Target::SteepModel:
                 connect(id, add_node(c.point, NodeKind::ModelContact, c.contact, bottom_width(id, c.point)));
                 ++t_.stats.model_contacts;
                 break;
@@ -309,25 +387,35 @@ private:
         }
     }
 
-    // buildplate-only: step down along the fan direction that gets lowest before meeting the model.
-    bool route_around(int id) {
+    // No candidate is clear (a node in a tight spot): step down as far as a clear strut reaches
+    // along the fan, and carry on from there. In buildplate-only mode this is how supports find
+    // their way around the model to the bed.
+    bool step_down(int id, double clearance = -1) {
         const Vec3 a = t_.nodes[id].p;
         double best_drop = 0;
         Vec3 best;
         for (const auto& d : fan_) {
             auto hit = model_.first_hit(a, d);
-            if (!hit) continue;  // would have been a bed candidate
             double margin = 0.5 * width_[id] + p_.model_clearance + p_.d_min;
-            double len = std::min(hit->distance - margin / std::max(0.2, -d.z), 20.0);
-            if (len <= 0) continue;
-            Vec3 to = a + d * len;
-            if (a.z - to.z > best_drop + 1e-9 && clear(id, to)) best_drop = a.z - to.z, best = to;
+            double len = hit ? hit->distance - margin / std::max(0.2, -d.z) : a.z / -d.z;
+            for (len = std::min(len, 20.0); len * -d.z > std::max(0.5, best_drop); len *= 0.5) {
+                Vec3 to = a + d * len;
+                if (clear(id, to, clearance) && (to.z < 1e-6 || can_escape(to, bottom_width(id, to)))) {
+                    best_drop = a.z - to.z, best = to;
+                    break;
+                }
+            }
         }
         if (best_drop < 0.5) return false;
+        if (best.z < 1e-6) {
+            accept(id, {best_drop, Target::Bed, -1, {best.x, best.y, 0}, {}});
+            return true;
+        }
         retire(id);
         int c = add_node(best, NodeKind::Chain, {}, bottom_width(id, best));
         connect(id, c);
         activate(c);
+        ++t_.stats.steps;
         return true;
     }
 
@@ -338,6 +426,7 @@ private:
     SupportTree t_;
     std::vector<double> width_;  // estimated width at each node, for clearance
     std::vector<char> active_;
+    std::vector<int> incoming_;
     ActiveGrid grid_;
     std::priority_queue<std::pair<double, int>> heap_;  // highest first, then lowest id
 };
@@ -351,6 +440,11 @@ double SupportTree::total_length() const {
 }
 
 double touching_space(const Params& p) { return 2 * p.gap + p.layer_height; }
+
+double contact_tolerance(const Params& p) {
+    double steepest = std::tan((90 - p.critical_angle) * kDeg);  // slope of the steepest overhang
+    return p.gap + 0.5 * p.tip_diameter * steepest + 0.05;
+}
 
 Vec3 merge_point(const Vec3& a, const Vec3& b, double tan_c) {
     double D = horizontal_distance(a, b);
@@ -377,6 +471,15 @@ bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec
     for (auto [sx, sy] : {std::pair{1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
         Vec3 ea = a + Vec3{sx * ra, sy * ra, 0}, eb = b + Vec3{sx * rb, sy * rb, 0};
         if (model.segment_hits(ea, eb)) return false;
+    }
+    // The edges miss a bump of the model that pokes between them: also keep a ball around the
+    // axis, as wide as the strut's square (half-diagonal), free of the model.
+    double len = distance(a, b);
+    int steps = std::max(1, static_cast<int>(std::ceil(len / std::clamp(0.5 * std::min(wa, wb), 0.25, 1.0))));
+    for (int i = 0; i <= steps; ++i) {
+        double t = double(i) / steps;
+        double r = (0.5 * (wa + (wb - wa) * t)) * std::sqrt(2.0);
+        if (model.squared_distance(a + (b - a) * t) < r * r) return false;
     }
     return true;
 }

@@ -24,15 +24,17 @@ class ModelQuery;
 enum class NodeKind {
     Leaf,          // below an overhang sample, carries a tip up to it
     Merge,         // where two cones meet
-    Chain,         // a bend on the way around the model (buildplate-only routing)
+    Chain,         // a bend on the way out of a tight spot or around the model
     Bed,           // on z = 0
     ModelContact,  // above a point of the model; a tip goes down to it
+    Dropped,       // a leaf in a crevice no strut fits through: no support (counted in stats)
 };
 
 struct Node {
     Vec3 p;
     NodeKind kind = NodeKind::Leaf;
     Vec3 contact;  // Leaf: the overhang sample; ModelContact: the model point below
+    Vec3 tip;      // Leaf: top of its tip, a z gap below the model (more under a slope)
     double room = INFINITY;  // Bed: horizontal distance to the model near the bed (limits a foot)
 };
 
@@ -49,6 +51,10 @@ struct Pillar {
 
 struct TreeStats {
     std::size_t merges = 0, bed_contacts = 0, model_contacts = 0, pillars = 0, touching = 0;
+    std::size_t internal = 0;  // samples on faces with material right below (overlapping shells)
+    std::size_t steps = 0;                // bends taken to get out of a tight spot
+    std::size_t tight = 0;                // struts that touch the model's clearance zone (no air)
+    std::size_t dropped = 0;              // samples in crevices too tight for a strut
     std::size_t clearance_fallbacks = 0;  // no candidate was clear: took the vertical anyway
     std::size_t unrouted = 0;             // buildplate-only: could not reach the bed, landed on the model
 };
@@ -66,6 +72,10 @@ struct SupportTree {
 // on what is below it (two z gaps and a layer).
 double touching_space(const Params& p);
 
+// How far below the model a tip's top may sit and still count as a contact: the z gap, plus what a
+// tip's square top needs under the steepest overhang that needs support.
+double contact_tolerance(const Params& p);
+
 // Highest point where the downward cones of apexes a and b meet (algorithm.md section 3):
 // b itself when it lies in a's cone, else the top of the cones' intersection. a must not be lower
 // than b. tan_c = tan(critical angle).
@@ -77,7 +87,8 @@ Vec3 merge_point(const Vec3& a, const Vec3& b, double tan_c);
 std::optional<Vec3> first_hit_in_cone(const ModelQuery& model, const Vec3& apex, double critical_angle_deg);
 
 // Is a strut from a (width wa) down to b (width wb) at least `clearance` away from the model?
-// Checks the axis and the four edges of its square envelope.
+// Checks the axis and the four edges of its square envelope (widened by the clearance), and
+// balls along the axis that contain its cross-section.
 bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance);
 
 // Grows the support tree (or the columns baseline, by p.strategy) for the given samples.

@@ -1,0 +1,1 @@
+use <nolib.scad> cube(1);
