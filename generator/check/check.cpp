@@ -140,8 +140,12 @@ CheckResult check_supports(const Mesh& model, const Mesh& supports, const Params
         double w = std::min(s.top_width, s.bottom_width);
         if (w > 0) r.worst_length_to_width = std::max(r.worst_length_to_width, distance(s.top, s.bottom) / w);
         // A contact: the centre of a solid's top with the model just above it (about one z gap).
-        auto hit = q.first_hit(s.top, {0, 0, 1});
-        if (hit && hit->distance <= contact_tolerance(p)) {
+        // (Nearest point rather than a ray up: a tip under the very rim of an overhang has the model
+        // beside its centre, not above it.)
+        Vec3 above = q.closest_point(s.top);
+        auto up = q.first_hit(s.top, {0, 0, 1});
+        if ((up && up->distance <= contact_tolerance(p)) ||
+            (above.z >= s.top.z - 1e-3 && distance(above, s.top) <= contact_tolerance(p))) {
             contacts.push_back(s.top);
             is_tip[si] = 1;
         }
@@ -225,14 +229,17 @@ CheckResult check_supports(const Mesh& model, const Mesh& supports, const Params
         if (points.size() == before)
             points.push_back((model.vertices[f[0]] + model.vertices[f[1]] + model.vertices[f[2]]) / 3.0);
     }
-    for (const auto& s : sample_overhangs(model, oo).samples)
+    auto generator_view = sample_overhangs(model, oo);
+    for (const auto& s : generator_view.samples)
         if (s.kind == SampleKind::Point) points.push_back(s.p);
-    // Points resting on what is below (or with material right below) anchor the overhang around
-    // them as a contact does: the printer bridges from them.
+    // Points resting on what is below (or with material right below), and inside corners where an
+    // overhang meets a wall under it, anchor the overhang around them as a contact does: the
+    // printer bridges from them.
     const double touch = touching_space(p);
     const Vec3 just_below{0, 0, 0.01};
     PointGrid contact_grid{std::max(reach, 0.5)}, anchor_grid{std::max(reach, 0.5)};
     for (const auto& c : contacts) contact_grid.add(c);
+    for (const auto& a : generator_view.anchors) anchor_grid.add(a);
     std::vector<Vec3> need;
     for (const auto& x : points) {
         if (x.z < p.layer_height) continue;

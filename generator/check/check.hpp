@@ -4,7 +4,8 @@
 //  coverage     every overhang point (sampled twice as densely as the generator samples, plus
 //               local minima) has a support contact within `reach` of it (horizontally and in
 //               3D, allowing the z gap), unless it hangs within touching_space of what is below;
-//               such resting points anchor the overhang within `reach` of them as contacts do;
+//               such resting points, and inside corners where the overhang meets a wall below
+//               it, anchor the overhang within `reach` of them as contacts do;
 //  penetration  no support solid beyond the tips (solids whose top or bottom is a contact, which
 //               touch the model by design) reaches into the model deeper than `penetration_tolerance`;
 //  grounding    every support solid rests on the bed, on the model (within the gap), or on

@@ -147,19 +147,23 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o) {
         if (std::max(pa.z, pb.z) <= o.bed_height * 0.5) continue;
         int over = 0;
         for (auto f : fs) over += cls[f];
-        bool border = over > 0 && over < static_cast<int>(fs.size());
+        // Convex edge: the far corner of the second face lies behind the first face's plane.
+        auto convex = [&] {
+            const auto& g = m.faces[fs[1]];
+            std::uint32_t far = g[0] != a && g[0] != b ? g[0] : (g[1] != a && g[1] != b ? g[1] : g[2]);
+            return dot(normalized(face_normal_unnormalized(m, m.faces[fs[0]])), m.vertices[far] - pa) < 0;
+        };
+        // A border where the overhang meets a wall going down from it (an inside corner) rests
+        // on that wall; only convex borders (lips) need their own samples.
+        bool any_border = over > 0 && over < static_cast<int>(fs.size());
+        bool border = any_border && (fs.size() != 2 || convex());
+        if (any_border && !border) sample_segment(pa, pb, s, res.anchors);
         bool open_border = fs.size() == 1 && over == 1;
         bool ridge = false;
         if (fs.size() == 2 && over == 0) {
             Vec3 n1 = normalized(face_normal_unnormalized(m, m.faces[fs[0]]));
             Vec3 n2 = normalized(face_normal_unnormalized(m, m.faces[fs[1]]));
-            Vec3 avg = normalized(n1 + n2);
-            if (avg.z < -sin_c) {
-                // Convex edge: the far corner of the second face lies behind the first face's plane.
-                const auto& g = m.faces[fs[1]];
-                std::uint32_t far = g[0] != a && g[0] != b ? g[0] : (g[1] != a && g[1] != b ? g[1] : g[2]);
-                ridge = dot(n1, m.vertices[far] - pa) < 0;
-            }
+            ridge = normalized(n1 + n2).z < -sin_c && convex();
         }
         if (!(border || open_border || ridge)) continue;
         res.ridge_edges += ridge;

@@ -25,6 +25,8 @@ struct Sample {
 
 struct OverhangSamples {
     std::vector<Sample> samples;  // sorted from top to bottom, ties by x then y: deterministic
+    std::vector<Vec3> anchors;    // inside corners where an overhang meets a wall below it: the
+                                  // wall carries the overhang there (no support needed)
     double overhang_area = 0;     // area of faces needing support (mm^2)
     std::size_t overhang_faces = 0, ridge_edges = 0, point_overhangs = 0;
 };

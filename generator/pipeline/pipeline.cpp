@@ -119,9 +119,10 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     Params columns = p;
     columns.strategy = "columns";
     r.columns = sw.time("columns baseline", progress, [&] { return build_supports(r.model, r.samples.samples, columns); });
-    if (r.supports.sized.tree.stats.unrouted)
-        r.warnings.push_back(std::to_string(r.supports.sized.tree.stats.unrouted) +
-                             " supports found no way around the model to the bed and rest on the model");
+    if (const auto& st = r.supports.sized.tree.stats; st.dropped)
+        r.warnings.push_back(std::to_string(st.dropped) + " overhang samples lie where no strut fits" +
+                             (p.supports_on_model ? "" : " (or can reach the bed)") +
+                             " and got no support; `clever-support check` tells whether neighbours cover them");
     if (r.supports.sized.strength_violations)
         r.warnings.push_back(std::to_string(r.supports.sized.strength_violations) +
                              " struts are longer than safe even at d_max; raise --d-max");

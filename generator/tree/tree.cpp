@@ -105,6 +105,7 @@ public:
             if (!active_[id]) continue;
             support(id);
         }
+        std::erase_if(t_.struts, [](const Strut& s) { return s.top < 0; });  // dropped branches
         return std::move(t_);
     }
 
@@ -116,6 +117,7 @@ private:
         width_.push_back(width);
         active_.push_back(0);
         incoming_.push_back(0);
+        in_struts_.emplace_back();
         return static_cast<int>(t_.nodes.size()) - 1;
     }
     void activate(int id) {
@@ -128,6 +130,7 @@ private:
         grid_.remove(id, t_.nodes[id].p);
     }
     void connect(int top, int bottom) {
+        in_struts_[bottom].push_back(static_cast<int>(t_.struts.size()));
         t_.struts.push_back({top, bottom});
         ++incoming_[bottom];
     }
@@ -250,7 +253,9 @@ private:
                 if (i > 0 && !in_cone(a, node)) continue;
                 out.push_back({hit->distance, can_stand_on(hit->face) ? Target::Model : Target::SteepModel, -1, node,
                                hit->point});
-            } else if (i == 0 || !p_.supports_on_model) {
+            } else {
+                // The bed along a slanted ray: longer than straight down, so taken only when the
+                // vertical is blocked (or, buildplate-only, when the model is in the way).
                 double len = a.z / -d.z;
                 out.push_back({len, Target::Bed, -1, a + d * len, {}});
             }
@@ -286,9 +291,12 @@ private:
         for (auto& c : found) out.push_back(c);
     }
 
-    bool clear(int from, const Vec3& to, double clearance = -1) const {
+    bool clear(int from, const Vec3& to, double clearance = -1, bool onto_model = false) const {
         return strut_is_clear(model_, t_.nodes[from].p, width_[from], to, bottom_width(from, to),
-                              clearance < 0 ? p_.model_clearance : clearance);
+                              clearance < 0 ? p_.model_clearance : clearance, onto_model);
+    }
+    bool clear(int from, const Candidate& c, double clearance = -1) const {
+        return clear(from, c.point, clearance, c.type == Target::Model || c.type == Target::SteepModel);
     }
 
     void support(int id) {
@@ -303,8 +311,12 @@ private:
             return x.other < y.other;
         });
         for (const auto& c : cands) {
-            if (c.type == Target::SteepModel || !clear(id, c.point)) continue;
+            if (c.type == Target::SteepModel || !clear(id, c)) continue;
             if (c.type == Target::Merge && (!clear(c.other, c.point) || !can_escape(c.point, merged_estimate(id, c))))
+                continue;
+            // Joining a node widens it: it must still fit through where it is.
+            if (c.type == Target::InCone &&
+                !can_escape(c.point, merged_width(p_, {width_[c.other], bottom_width(id, c.point)})))
                 continue;
             accept(id, c);
             return;
@@ -312,7 +324,7 @@ private:
         if (step_down(id)) return;
         // In a tight spot, give up the extra air before giving up clearance altogether.
         for (const auto& c : cands) {
-            if (!clear(id, c.point, 0.0)) continue;
+            if (!clear(id, c, 0.0)) continue;
             if (c.type == Target::Merge && !clear(c.other, c.point, 0.0)) continue;
             ++t_.stats.tight;
             accept(id, c);
@@ -322,30 +334,28 @@ private:
             ++t_.stats.tight;
             return;
         }
-        // A leaf with nothing clear sits in a crevice too tight for any strut: drop it rather than
-        // print a support fused into the model. Its neighbours usually cover its spot (check says).
-        if (t_.nodes[id].kind == NodeKind::Leaf && incoming_[id] == 0) {
-            retire(id);
-            t_.nodes[id].kind = NodeKind::Dropped;
-            ++t_.stats.dropped;
-            return;
-        }
-        // Nothing is clear: the vertical (its axis is free by construction) is the least bad.
-        for (const auto& c : cands) {
-            if ((c.type == Target::Model || c.type == Target::SteepModel || c.type == Target::Bed) &&
-                c.point.x == t_.nodes[id].p.x &&
-                c.point.y == t_.nodes[id].p.y) {
-                ++t_.stats.clearance_fallbacks;
-                accept(id, c);
-                return;
+        // Nothing fits: this node sits where no strut can carry it down without cutting into the
+        // model (or, buildplate-only, without landing on it). Drop it and the branches above it
+        // rather than print supports fused into the model; the report counts the samples lost and
+        // `check` judges whether their neighbours still cover the overhang.
+        drop_with_branches(id);
+    }
+
+    void drop_with_branches(int id) {
+        std::vector<int> stack{id};
+        while (!stack.empty()) {
+            int v = stack.back();
+            stack.pop_back();
+            if (active_[v]) retire(v);
+            if (t_.nodes[v].kind == NodeKind::Leaf) ++t_.stats.dropped;
+            t_.nodes[v].kind = NodeKind::Dropped;
+            for (int e : in_struts_[v]) {
+                stack.push_back(t_.struts[e].top);
+                t_.struts[e] = {-1, -1};
             }
+            in_struts_[v].clear();
         }
-        // buildplate-only with the vertical blocked and no way around: land on the model.
-        const Vec3 a = t_.nodes[id].p;
-        auto hit = model_.first_hit(a, {0, 0, -1});
-        ++(p_.supports_on_model ? t_.stats.clearance_fallbacks : t_.stats.unrouted);
-        if (hit) accept(id, {hit->distance, Target::Model, -1, contact_node(hit->point, a.z), hit->point});
-        else accept(id, {a.z, Target::Bed, -1, {a.x, a.y, 0}, {}});
+        ++t_.stats.dropped_branches;
     }
 
     double merged_estimate(int id, const Candidate& c) const {
@@ -427,6 +437,7 @@ private:
     std::vector<double> width_;  // estimated width at each node, for clearance
     std::vector<char> active_;
     std::vector<int> incoming_;
+    std::vector<std::vector<int>> in_struts_;
     ActiveGrid grid_;
     std::priority_queue<std::pair<double, int>> heap_;  // highest first, then lowest id
 };
@@ -465,7 +476,8 @@ std::optional<Vec3> first_hit_in_cone(const ModelQuery& model, const Vec3& apex,
     return best;
 }
 
-bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance) {
+bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance,
+                    bool onto_model) {
     if (model.segment_hits(a, b)) return false;
     double ra = 0.5 * wa + clearance, rb = 0.5 * wb + clearance;
     for (auto [sx, sy] : {std::pair{1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
@@ -476,9 +488,11 @@ bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec
     // axis, as wide as the strut's square (half-diagonal), free of the model.
     double len = distance(a, b);
     int steps = std::max(1, static_cast<int>(std::ceil(len / std::clamp(0.5 * std::min(wa, wb), 0.25, 1.0))));
+    // A strut onto the model ends a tip's length above it: near that end the edges judge.
     for (int i = 0; i <= steps; ++i) {
         double t = double(i) / steps;
         double r = (0.5 * (wa + (wb - wa) * t)) * std::sqrt(2.0);
+        if (onto_model && (1 - t) * len < r) break;
         if (model.squared_distance(a + (b - a) * t) < r * r) return false;
     }
     return true;

@@ -27,7 +27,7 @@ enum class NodeKind {
     Chain,         // a bend on the way out of a tight spot or around the model
     Bed,           // on z = 0
     ModelContact,  // above a point of the model; a tip goes down to it
-    Dropped,       // a leaf in a crevice no strut fits through: no support (counted in stats)
+    Dropped,       // given up: no strut fits from here (counted in stats; nothing is built)
 };
 
 struct Node {
@@ -54,9 +54,8 @@ struct TreeStats {
     std::size_t internal = 0;  // samples on faces with material right below (overlapping shells)
     std::size_t steps = 0;                // bends taken to get out of a tight spot
     std::size_t tight = 0;                // struts that touch the model's clearance zone (no air)
-    std::size_t dropped = 0;              // samples in crevices too tight for a strut
-    std::size_t clearance_fallbacks = 0;  // no candidate was clear: took the vertical anyway
-    std::size_t unrouted = 0;             // buildplate-only: could not reach the bed, landed on the model
+    std::size_t dropped = 0;              // samples given up: in crevices no strut fits through
+    std::size_t dropped_branches = 0;     // nodes with nowhere to go, dropped with what they carried
 };
 
 struct SupportTree {
@@ -89,7 +88,9 @@ std::optional<Vec3> first_hit_in_cone(const ModelQuery& model, const Vec3& apex,
 // Is a strut from a (width wa) down to b (width wb) at least `clearance` away from the model?
 // Checks the axis and the four edges of its square envelope (widened by the clearance), and
 // balls along the axis that contain its cross-section.
-bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance);
+// `onto_model`: b is a contact node a tip's length above the model, where only the edges judge.
+bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance,
+                    bool onto_model = false);
 
 // Grows the support tree (or the columns baseline, by p.strategy) for the given samples.
 SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p);

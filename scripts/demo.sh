@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds, generates tree supports for a bundled example, renders the
+# generated OpenSCAD into one printable solid, and prints where everything is.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh
+scripts/build.sh >/dev/null
+model=${1:-examples/models/arches.stl}
+name=$(basename "${model%.*}")
+out=out/$name
+echo
+echo "== clever-support $model"
+build/generator/clever-support --out "$out" "$model"
+echo
+echo "== check (coverage, penetration, grounding, closed solids, angles)"
+build/generator/clever-support check --model "$out/$name.model.stl" --supports "$out/$name.supports.stl"
+echo
+echo "== render $out/$name.scad with OpenSCAD"
+build/generator/clever-support render "$out/$name.scad"
+echo
+echo "Outputs in $out/:"
+ls -1 "$out" | sed 's/^/  /'
+echo "Print $out/$name.supported.stl, or open $out/$name.scad in OpenSCAD to tweak k, d_min, tips, feet."

@@ -1,0 +1,116 @@
+// End to end: the CLI on the shared benchmark meshes (skipped where ../shared/models is absent)
+// and on the bundled examples, judged by the independent `check` and the report.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "check/check.hpp"
+#include "core/params.hpp"
+#include "mesh/mesh_io.hpp"
+#include "mesh/repair.hpp"
+#include "support.hpp"
+
+namespace cs::test {
+namespace {
+
+struct Model {
+    std::string file;
+    double scale;
+};
+
+double benchmark_scale(const std::string& file) {
+    std::ifstream in(shared_models() + "/benchmark.json");
+    auto j = nlohmann::json::parse(in);
+    for (const auto& m : j["models"])
+        if (m["file"] == file) return m["scale"].get<double>();
+    return 1.0;
+}
+
+std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+struct Generated {
+    std::string dir, name;
+    nlohmann::json report;
+    CheckResult check;
+};
+
+Generated generate(const std::string& input, double scale, const std::string& out, const std::string& extra = "") {
+    Generated g;
+    g.dir = out;
+    g.name = std::filesystem::path(input).stem().string();
+    auto r = run(quote(cli()) + " " + quote(input) + " --orient keep --scale " + std::to_string(scale) + " --out " +
+                 quote(out) + " -q " + extra);
+    EXPECT_EQ(r.code, 0) << r.out;
+    g.report = nlohmann::json::parse(slurp(out + "/" + g.name + ".report.json"));
+    RepairReport rr;
+    Mesh model = read_mesh(out + "/" + g.name + ".model.stl");
+    Mesh supports = read_mesh(out + "/" + g.name + ".supports.stl");
+    Params p;
+    g.check = check_supports(model, supports, p, {});
+    return g;
+}
+
+class SharedModel : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SharedModel, ChecksPassWithFullCoverageAndTreeBeatsColumns) {
+    if (!have_shared_models()) GTEST_SKIP() << "../shared/models is absent";
+    TempDir tmp;
+    const std::string file = GetParam();
+    auto g = generate(shared_models() + "/" + file, benchmark_scale(file), tmp.path);
+    EXPECT_TRUE(g.check.ok()) << g.check.summary();
+    EXPECT_TRUE(g.check.coverage_ok()) << g.check.summary();
+    EXPECT_GT(g.check.overhang_points, 0u);
+    double tree = g.report["supports"]["support_volume_mm3"], columns = g.report["columns_baseline"]["support_volume_mm3"];
+    EXPECT_GT(tree, 0);
+    EXPECT_LT(tree, columns) << "tree support should use less material than plain columns";
+}
+
+TEST_P(SharedModel, BuildplateOnlyPutsNoContactOnTheModel) {
+    if (!have_shared_models()) GTEST_SKIP() << "../shared/models is absent";
+    TempDir tmp;
+    const std::string file = GetParam();
+    auto g = generate(shared_models() + "/" + file, benchmark_scale(file), tmp.path, "--buildplate-only");
+    EXPECT_EQ(g.report["supports"]["model_contacts"], 0) << g.report["supports"].dump();
+    EXPECT_TRUE(g.check.ok()) << g.check.summary();
+}
+
+INSTANTIATE_TEST_SUITE_P(Benchmark, SharedModel,
+                         ::testing::Values("bridge.stl", "u_overhang.stl", "extruder_idler.stl", "spot.stl",
+                                           "armadillo.stl"),
+                         [](const auto& info) { return std::filesystem::path(info.param).stem().string(); });
+
+TEST(Determinism, SameInputSameBytes) {
+    std::string input = have_shared_models() ? shared_models() + "/spot.stl" : source_dir() + "/examples/models/tree.stl";
+    double scale = have_shared_models() ? benchmark_scale("spot.stl") : 1.0;
+    TempDir a, b;
+    auto ga = generate(input, scale, a.path);
+    auto gb = generate(input, scale, b.path);
+    for (const auto& f : std::filesystem::directory_iterator(a.path)) {
+        std::string name = f.path().filename().string();
+        if (name.ends_with(".report.json")) continue;  // holds timings
+        EXPECT_EQ(slurp(a / name), slurp(b / name)) << name << " differs between two runs";
+    }
+    auto ra = ga.report, rb = gb.report;
+    ra.erase("seconds"), rb.erase("seconds"), ra.erase("seconds_total"), rb.erase("seconds_total");
+    EXPECT_EQ(ra.dump(), rb.dump());
+}
+
+class Example : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(Example, ChecksPass) {
+    TempDir tmp;
+    auto g = generate(source_dir() + "/examples/models/" + GetParam() + ".stl", 1.0, tmp.path);
+    EXPECT_TRUE(g.check.ok()) << g.check.summary();
+    EXPECT_LT(g.report["supports"]["support_volume_mm3"].get<double>(),
+              g.report["columns_baseline"]["support_volume_mm3"].get<double>());
+}
+
+INSTANTIATE_TEST_SUITE_P(Bundled, Example, ::testing::Values("tree", "molecule", "arches", "wheel", "bird"));
+
+}  // namespace
+}  // namespace cs::test
