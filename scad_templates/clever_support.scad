@@ -142,10 +142,12 @@ module cs_contact_tip(bottom, top, tip_diameter, w_top, tip_length, wall) {
 function cs_foot_extra(foot_extra, w, room, clearance) = let(e = min(foot_extra, room / sqrt(2) - w / 2 - clearance))
     e >= 0.25 ? e : 0;
 
+function cs_foot_top(bed_point, toward, foot_height) =
+    bed_point + (toward - bed_point) * min(0.5, foot_height / toward[2]);
+
 module cs_foot(bed_point, toward, w, foot_height, foot_extra, room, clearance, wall) {
-    f = min(0.5, foot_height / toward[2]);
     e = cs_foot_extra(foot_extra, w, room, clearance);
-    if (e > 0) cs_prism(bed_point, bed_point + (toward - bed_point) * f, w + 2 * e, w, false, wall);
+    if (e > 0) cs_prism(bed_point, cs_foot_top(bed_point, toward, foot_height), w + 2 * e, w, false, wall);
 }
 
 module cs_tree(tree, k, d_min, d_max, strength_length, wall, tip_length, tip_diameter, feet, foot_height,
@@ -157,10 +159,12 @@ module cs_tree(tree, k, d_min, d_max, strength_length, wall, tip_length, tip_dia
         a = nodes[struts[e][0]];
         b0 = nodes[struts[e][1]];
         on_bed = kinds[struts[e][1]] == 3;
-        b = on_bed ? b0 : b0 + (b0 - a) * (overlap / norm(b0 - a));
+        has_foot = on_bed && feet && foot_height > 0 && cs_foot_extra(foot_extra, w[e][1], struts[e][5], clearance) > 0;
+        down = (b0 - a) / norm(b0 - a);
+        // Onto a joint: reach `overlap` into it; onto a foot: stop just inside the foot's top.
+        b = !on_bed ? b0 + down * overlap : has_foot ? cs_foot_top(b0, a, foot_height) + down * overlap : b0;
         cs_strut(a, b, w[e][0], w[e][1], wall, 3 * wall);
-        if (on_bed && feet && foot_height > 0)
-            cs_foot(b0, a, w[e][1], foot_height, foot_extra, struts[e][5], clearance, wall);
+        if (has_foot) cs_foot(b0, a, w[e][1], foot_height, foot_extra, struts[e][5], clearance, wall);
     }
     for (l = leaves) cs_tip(nodes[l[0]] - [0, 0, overlap], l[1], w[l[2]][0], tip_diameter, tip_length, wall);
     for (c = contacts) {

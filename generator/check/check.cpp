@@ -78,8 +78,18 @@ bool is_closed_and_consistent(const Mesh& m) {
     return true;
 }
 
-std::vector<Mesh> split_shells(const Mesh& raw) {
-    // Weld identical coordinates (STL stores each triangle's corners separately).
+bool is_watertight(const Mesh& m) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+    for (const auto& f : m.faces)
+        for (int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
+    for (const auto& [e, n] : directed) {
+        auto it = directed.find({e.second, e.first});
+        if (it == directed.end() || it->second != n) return false;
+    }
+    return true;
+}
+
+Mesh weld(const Mesh& raw) {
     std::map<std::tuple<double, double, double>, std::uint32_t> index;
     Mesh m;
     std::vector<std::uint32_t> remap(raw.vertices.size());
@@ -90,8 +100,34 @@ std::vector<Mesh> split_shells(const Mesh& raw) {
         remap[i] = it->second;
     }
     for (const auto& f : raw.faces) m.faces.push_back({remap[f[0]], remap[f[1]], remap[f[2]]});
+    return m;
+}
+
+std::vector<Mesh> split_shells(const Mesh& raw) {
+    Mesh m = weld(raw);
+    // Faces join across edges that exactly two faces share. Separate solids that happen to share
+    // vertices, or a whole ring where two bodies meet end to end, stay apart.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> edge_faces;
+    for (std::uint32_t fi = 0; fi < m.faces.size(); ++fi)
+        for (int k = 0; k < 3; ++k) edge_faces[std::minmax(m.faces[fi][k], m.faces[fi][(k + 1) % 3])].push_back(fi);
+    std::vector<int> comp(m.faces.size(), -1);
     int count = 0;
-    auto comp = face_components(m, count);
+    for (std::uint32_t seed = 0; seed < m.faces.size(); ++seed) {
+        if (comp[seed] >= 0) continue;
+        std::vector<std::uint32_t> stack{seed};
+        comp[seed] = count;
+        while (!stack.empty()) {
+            auto f = stack.back();
+            stack.pop_back();
+            for (int k = 0; k < 3; ++k) {
+                const auto& fs = edge_faces[std::minmax(m.faces[f][k], m.faces[f][(k + 1) % 3])];
+                if (fs.size() != 2) continue;
+                for (auto g : fs)
+                    if (comp[g] < 0) comp[g] = count, stack.push_back(g);
+            }
+        }
+        ++count;
+    }
     std::vector<Mesh> shells(count);
     std::vector<std::unordered_map<std::uint32_t, std::uint32_t>> local(count);
     for (size_t fi = 0; fi < m.faces.size(); ++fi) {
@@ -108,10 +144,11 @@ std::vector<Mesh> split_shells(const Mesh& raw) {
     return shells;
 }
 
-CheckResult check_supports(const Mesh& model, const Mesh& supports, const Params& p, const CheckOptions& o) {
+CheckResult check_supports(const Mesh& model_in, const Mesh& supports, const Params& p, const CheckOptions& o) {
     CheckResult r;
+    const Mesh model = weld(model_in);  // neighbours (local minima, closedness) need shared vertices
     ModelQuery q(model);
-    r.model_closed = is_closed_and_consistent(model);
+    r.model_closed = is_watertight(model);
     const double reach = o.reach > 0 ? o.reach : p.sampling_distance;
 
     // Shells and their shape.
@@ -258,10 +295,12 @@ CheckResult check_supports(const Mesh& model, const Mesh& supports, const Params
         }
         need.push_back(x);
     }
+    // Within reach horizontally, and on the same surface: no further up or down than the steepest
+    // overhang rises over that reach (plus a contact's gap).
+    const double rise = reach * std::tan((90 - p.critical_angle) * M_PI / 180) + contact_tolerance(p);
     for (const auto& x : need) {
-        auto near = [&](const Vec3& c) { return horizontal_distance(c, x) <= reach && distance(c, x) <= reach + p.gap + 1e-6; };
-        bool ok = contact_grid.any_near(x, reach, [&](const Vec3& c) { return c.z <= x.z + 1e-6 && near(c); }) ||
-                  anchor_grid.any_near(x, reach, near);
+        auto near = [&](const Vec3& c) { return horizontal_distance(c, x) <= reach && std::abs(c.z - x.z) <= rise; };
+        bool ok = contact_grid.any_near(x, reach, near) || anchor_grid.any_near(x, reach, near);
         if (ok) ++r.covered;
         else if (r.uncovered.size() < 10) r.uncovered.push_back(x);
     }

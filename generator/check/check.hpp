@@ -2,8 +2,9 @@
 // support STL (any tool's, as long as each support solid is a separate closed shell).
 //
 //  coverage     every overhang point (sampled twice as densely as the generator samples, plus
-//               local minima) has a support contact within `reach` of it (horizontally and in
-//               3D, allowing the z gap), unless it hangs within touching_space of what is below;
+//               local minima) has a support contact within `reach` of it horizontally, on the
+//               same stretch of surface (no higher or lower than the steepest overhang rises over
+//               that reach, plus the contact gap), unless it hangs within touching_space of what is below;
 //               such resting points, and inside corners where the overhang meets a wall below
 //               it, anchor the overhang within `reach` of them as contacts do;
 //  penetration  no support solid beyond the tips (solids whose top or bottom is a contact, which
@@ -54,10 +55,18 @@ struct CheckResult {
 
 CheckResult check_supports(const Mesh& model, const Mesh& supports, const Params& p, const CheckOptions& o);
 
-// Splits a mesh into its shells (connected by shared vertices after welding identical ones).
+// Splits a mesh into its shells: faces connected across edges shared by exactly two faces, after
+// welding identical vertices (bodies that touch at a vertex or a whole ring stay apart).
 std::vector<Mesh> split_shells(const Mesh& m);
 
-// Every edge used exactly twice, once in each direction.
+// Every edge used exactly twice, once in each direction (one clean solid, e.g. a support body).
 bool is_closed_and_consistent(const Mesh& m);
+
+// Every edge used as often in one direction as in the other: watertight and consistently
+// oriented, allowing solids that touch along an edge (as a boolean union may leave them).
+bool is_watertight(const Mesh& m);
+
+// Identical vertices merged (an STL stores each triangle's corners separately).
+Mesh weld(const Mesh& m);
 
 }  // namespace cs

@@ -183,7 +183,7 @@ int main(int argc, char** argv) {
             Params p = chk.resolve();
             RepairReport rr;
             Mesh model = repair_mesh(read_mesh(check_model), check_model, rr);
-            Mesh sup = read_mesh(check_supports_path);
+            Mesh sup = read_mesh(check_supports_path, /*allow_empty=*/true);
             auto res = check_supports(model, sup, p, copt);
             std::printf("%s", check_json ? (res.json() + "\n").c_str() : res.summary().c_str());
             return res.ok() ? kExitOk : kExitCheckFailed;

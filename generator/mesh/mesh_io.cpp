@@ -403,7 +403,7 @@ void check_coordinates(const Mesh& m, const std::string& name) {
 
 }  // namespace
 
-Mesh parse_mesh(std::string_view bytes, const std::string& format, const std::string& name) {
+Mesh parse_mesh(std::string_view bytes, const std::string& format, const std::string& name, bool allow_empty) {
     Mesh m;
     if (format == "stl") m = parse_stl(bytes, name);
     else if (format == "obj") m = parse_obj(bytes, name);
@@ -412,12 +412,12 @@ Mesh parse_mesh(std::string_view bytes, const std::string& format, const std::st
     else
         fail(name, "unknown mesh format '" + format + "'", "Use an .stl, .obj, .off or .ply file.");
     check_coordinates(m, name);
-    if (m.faces.empty())
+    if (m.faces.empty() && !allow_empty)
         fail(name, "the file contains no triangles", "Check that it is a mesh file and was exported completely.");
     return m;
 }
 
-Mesh read_mesh(const std::string& path) {
+Mesh read_mesh(const std::string& path, bool allow_empty) {
     struct stat st{};
     if (stat(path.c_str(), &st) != 0)
         fail(path, std::string("cannot open: ") + std::strerror(errno), "Check the path.");
@@ -431,7 +431,7 @@ Mesh read_mesh(const std::string& path) {
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (in.bad()) fail(path, "read error", "Check the disk and the file.");
     if (bytes.empty()) fail(path, "the file is empty", "Check that the export finished and the file was copied completely.");
-    return parse_mesh(bytes, ext, path);
+    return parse_mesh(bytes, ext, path, allow_empty);
 }
 
 std::string encode_stl(const Mesh& mesh, const std::string& header) {

@@ -16,12 +16,13 @@
 
 namespace cs {
 
-// Reads any supported format. Throws InputError.
-Mesh read_mesh(const std::string& path);
+// Reads any supported format. Throws InputError; a file with no triangles is an error unless
+// `allow_empty` (a support STL of a model that needs no support is empty).
+Mesh read_mesh(const std::string& path, bool allow_empty = false);
 
 // Parses in-memory content; `name` is used in messages and `format` is one of stl, obj, off, ply.
 // This is what the fuzz targets call.
-Mesh parse_mesh(std::string_view bytes, const std::string& format, const std::string& name);
+Mesh parse_mesh(std::string_view bytes, const std::string& format, const std::string& name, bool allow_empty = false);
 
 // Binary STL with recomputed facet normals. Throws OutputError.
 void write_stl(const std::string& path, const Mesh& mesh, const std::string& header = "clever-support");

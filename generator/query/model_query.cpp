@@ -71,8 +71,10 @@ double ModelQuery::squared_distance(const Vec3& p) const { return impl_->tree.sq
 Vec3 ModelQuery::closest_point(const Vec3& p) const { return vec(impl_->tree.closest_point(pt(p))); }
 
 bool ModelQuery::inside(const Vec3& p) const {
-    // Irrational-looking directions avoid rays that graze edges of axis-aligned CAD meshes.
-    static const K::Vector_3 dirs[3] = {{0.5773, 0.5781, 0.5767}, {-0.7071, 0.0123, 0.7070}, {0.0211, -0.8011, -0.5982}};
+    // Irrational-looking directions avoid rays that graze edges of axis-aligned CAD meshes. None
+    // points up: the usual question is about a point just below an overhang, whose face right
+    // above would otherwise be crossed at a hair's distance, where rounding decides.
+    static const K::Vector_3 dirs[3] = {{0.5773, 0.5781, -0.5767}, {-0.7071, 0.0123, -0.7070}, {0.0211, -0.9981, -0.0582}};
     // Winding number along each ray (exits minus entries), not parity: overlapping solids, which
     // slicers unite, count as inside.
     int votes = 0;

@@ -40,6 +40,12 @@ Profile2D profile_of(Profile kind, double d, double wall) {
 
 double min_n_width(const Params& p) { return 3 * p.wall_thickness; }
 
+Vec3 foot_top(const Vec3& bed_point, const Vec3& above, const Params& p) {
+    // At most half-way up its strut, so the foot never ends where the strut begins.
+    double f = std::min(0.5, p.foot_height / above.z);
+    return bed_point + (above - bed_point) * f;
+}
+
 double foot_extra(const Params& p, double strut_width, double room) {
     // The foot's corner reaches (w/2 + extra) * sqrt(2) from its centre.
     double fit = room / std::sqrt(2.0) - 0.5 * strut_width - p.model_clearance;
@@ -112,7 +118,13 @@ std::vector<Body> build_bodies(const SizedTree& sized, const Params& p) {
         const auto& st = sized.tree.struts[e];
         const auto& sz = sized.struts[e];
         Vec3 top = nodes[st.top].p, bottom = nodes[st.bottom].p;
-        if (nodes[st.bottom].kind != NodeKind::Bed) bottom = bottom + normalized(bottom - top) * overlap;
+        const Node& foot_node = nodes[st.bottom];
+        if (foot_node.kind != NodeKind::Bed) {
+            bottom = bottom + normalized(bottom - top) * overlap;
+        } else if (p.feet && p.foot_height > 0 && foot_extra(p, sz.bottom_width, foot_node.room) > 0) {
+            // On a foot, the strut stops just inside the foot's top rather than running through it.
+            bottom = foot_top(foot_node.p, top, p) + normalized(bottom - top) * overlap;
+        }
         bodies.push_back({BodyKind::Strut, profile(sz.top_width, sz.bottom_width), bottom, top, sz.bottom_width,
                           sz.top_width});
         incoming_width[st.bottom] = sz.bottom_width;
@@ -130,10 +142,7 @@ std::vector<Body> build_bodies(const SizedTree& sized, const Params& p) {
             if (nd.p.z - bottom.z > 0.01)
                 bodies.push_back({BodyKind::ContactTip, Profile::Square, bottom, nd.p, p.tip_diameter, incoming_width[v]});
         } else if (nd.kind == NodeKind::Bed && p.feet && p.foot_height > 0 && incoming_top[v]) {
-            const Vec3& above = *incoming_top[v];
-            // At most half-way up its strut, so the foot never ends where the strut begins.
-            double f = std::min(0.5, p.foot_height / above.z);
-            Vec3 top = nd.p + (above - nd.p) * f;
+            Vec3 top = foot_top(nd.p, *incoming_top[v], p);
             double w = incoming_width[v];
             double extra = foot_extra(p, w, nd.room);
             if (extra > 0) bodies.push_back({BodyKind::Foot, Profile::Square, nd.p, top, w + 2 * extra, w});

@@ -56,6 +56,8 @@ double min_n_width(const Params& p);
 // How far a foot may reach beyond its strut on each side, given the room to the model: it keeps
 // the model clearance, and is dropped (0) when less than a quarter millimetre is left.
 double foot_extra(const Params& p, double strut_width, double room);
+// Where a foot under the strut from `above` down to `bed_point` ends, on the strut's axis.
+Vec3 foot_top(const Vec3& bed_point, const Vec3& above, const Params& p);
 
 std::vector<Body> build_bodies(const SizedTree& sized, const Params& p);
 

@@ -135,10 +135,16 @@ private:
         ++incoming_[bottom];
     }
 
-    // Width a strut from node `from` to `to` will have at its lower end (an estimate for clearance).
+    // Widths a strut from node `from` to `to` will have at its ends (estimates for clearance, by
+    // the struts stage's rules; a run of several struts may come out a little wider).
+    double top_width(int from, const Vec3& to) const {
+        const Vec3& a = t_.nodes[from].p;
+        double need = strength_width(p_, distance(a, to), angle_from_vertical_deg(a, to));
+        return std::clamp(std::max(width_[from], need), p_.d_min, p_.d_max);
+    }
     double bottom_width(int from, const Vec3& to) const {
         const Vec3& a = t_.nodes[from].p;
-        return std::max(width_[from], eqn1_width(p_, distance(a, to), angle_from_vertical_deg(a, to)));
+        return std::max(top_width(from, to), eqn1_width(p_, distance(a, to), angle_from_vertical_deg(a, to)));
     }
 
     void hang_leaves(const std::vector<Sample>& samples) {
@@ -292,11 +298,11 @@ private:
     }
 
     bool clear(int from, const Vec3& to, double clearance = -1, bool onto_model = false) const {
-        return strut_is_clear(model_, t_.nodes[from].p, width_[from], to, bottom_width(from, to),
+        return strut_is_clear(model_, t_.nodes[from].p, top_width(from, to), to, bottom_width(from, to),
                               clearance < 0 ? p_.model_clearance : clearance, onto_model);
     }
     bool clear(int from, const Candidate& c, double clearance = -1) const {
-        return clear(from, c.point, clearance, c.type == Target::Model || c.type == Target::SteepModel);
+        return clear(from, c.point, clearance, c.type == Target::Model);  // a steep face: no relief
     }
 
     void support(int id) {

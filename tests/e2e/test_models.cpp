@@ -49,7 +49,7 @@ Generated generate(const std::string& input, double scale, const std::string& ou
     g.report = nlohmann::json::parse(slurp(out + "/" + g.name + ".report.json"));
     RepairReport rr;
     Mesh model = read_mesh(out + "/" + g.name + ".model.stl");
-    Mesh supports = read_mesh(out + "/" + g.name + ".supports.stl");
+    Mesh supports = read_mesh(out + "/" + g.name + ".supports.stl", true);
     Params p;
     g.check = check_supports(model, supports, p, {});
     return g;
@@ -76,7 +76,12 @@ TEST_P(SharedModel, BuildplateOnlyPutsNoContactOnTheModel) {
     const std::string file = GetParam();
     auto g = generate(shared_models() + "/" + file, benchmark_scale(file), tmp.path, "--buildplate-only");
     EXPECT_EQ(g.report["supports"]["model_contacts"], 0) << g.report["supports"].dump();
-    EXPECT_TRUE(g.check.ok()) << g.check.summary();
+    // Coverage is not asked: an overhang enclosed by the model (the U's ceiling) cannot reach the
+    // bed at all. Everything that is built must still be sound.
+    EXPECT_EQ(g.check.penetrating_bodies, 0u) << g.check.summary();
+    EXPECT_EQ(g.check.ungrounded_bodies, 0u) << g.check.summary();
+    EXPECT_EQ(g.check.open_bodies + g.check.inward_bodies, 0u) << g.check.summary();
+    EXPECT_EQ(g.check.steep_bodies, 0u) << g.check.summary();
 }
 
 INSTANTIATE_TEST_SUITE_P(Benchmark, SharedModel,

