@@ -146,7 +146,9 @@ std::vector<Mesh> split_shells(const Mesh& raw) {
 
 CheckResult check_supports(const Mesh& model_in, const Mesh& supports, const Params& p, const CheckOptions& o) {
     CheckResult r;
-    const Mesh model = weld(model_in);  // neighbours (local minima, closedness) need shared vertices
+    // Welded (neighbours, closedness) and cleaned exactly as the generator saw it.
+    RepairReport ignored;
+    const Mesh model = repair_mesh(model_in, "model", ignored);
     ModelQuery q(model);
     r.model_closed = is_watertight(model);
     const double reach = o.reach > 0 ? o.reach : p.sampling_distance;
@@ -246,7 +248,10 @@ CheckResult check_supports(const Mesh& model_in, const Mesh& supports, const Par
                 }
         }
         grounded[i] = ok;
-        if (!ok) ++r.ungrounded_bodies;
+        if (!ok) {
+            ++r.ungrounded_bodies;
+            if (r.flagged.size() < 10) r.flagged.push_back({s.bottom, s.top});
+        }
         // Index the shell by every cell its axis crosses, so shells above can find it.
         Box3 b = bounding_box(s.mesh);
         for (long a = static_cast<long>(std::floor(b.min.x / cell)); a <= static_cast<long>(std::floor(b.max.x / cell)); ++a)

@@ -57,6 +57,7 @@ json supports_json(const Supports& s) {
             {"tight", st.tight},
             {"dropped_samples", st.dropped},
             {"dropped_branches", st.dropped_branches},
+            {"undone_joins", st.undone},
             {"bodies", s.bodies.size()},
             {"total_strut_length_mm", s.length},
             {"support_volume_mm3", s.volume},

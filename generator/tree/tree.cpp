@@ -118,6 +118,9 @@ private:
         active_.push_back(0);
         incoming_.push_back(0);
         in_struts_.emplace_back();
+        run_.push_back(0);
+        retries_.push_back(0);
+        banned_.emplace_back();
         return static_cast<int>(t_.nodes.size()) - 1;
     }
     void activate(int id) {
@@ -139,7 +142,8 @@ private:
     // the struts stage's rules; a run of several struts may come out a little wider).
     double top_width(int from, const Vec3& to) const {
         const Vec3& a = t_.nodes[from].p;
-        double need = strength_width(p_, distance(a, to), angle_from_vertical_deg(a, to));
+        // A bend continues its run: the strength rule sizes the whole run as one column.
+        double need = strength_width(p_, run_[from] + distance(a, to), angle_from_vertical_deg(a, to));
         return std::clamp(std::max(width_[from], need), p_.d_min, p_.d_max);
     }
     double bottom_width(int from, const Vec3& to) const {
@@ -284,7 +288,7 @@ private:
         grid_.visit_near(
             a,
             [&](int q) {
-                if (q == id) return;
+                if (q == id || std::find(banned_[id].begin(), banned_[id].end(), q) != banned_[id].end()) return;
                 const Vec3& b = t_.nodes[q].p;
                 if (b.z > a.z || (b.z == a.z && q < id)) return;  // only nodes the sweep has not passed
                 Vec3 s = merge_point(a, b, tan_c_);
@@ -340,11 +344,41 @@ private:
             ++t_.stats.tight;
             return;
         }
-        // Nothing fits: this node sits where no strut can carry it down without cutting into the
-        // model (or, buildplate-only, without landing on it). Drop it and the branches above it
-        // rather than print supports fused into the model; the report counts the samples lost and
-        // `check` judges whether their neighbours still cover the overhang.
+        // Nothing fits here. First undo what was joined into this node, so the branches above try
+        // again elsewhere (a merge made a node too wide for where it hangs); after that, drop it
+        // and the branches above it rather than print supports fused into the model. The report
+        // counts the samples lost; `check` judges whether their neighbours still cover them.
+        if (undo_joins(id)) return;
         drop_with_branches(id);
+    }
+
+    // Detaches the struts ending at `id` and sends the nodes above back to the sweep, barred from
+    // joining `id` again. A leaf stays (thin again) and retries; a merge point or bend is dropped.
+    bool undo_joins(int id) {
+        if (in_struts_[id].empty() || retries_[id] >= 2) return false;
+        for (int e : in_struts_[id]) {
+            int parent = t_.struts[e].top;
+            t_.struts[e] = {-1, -1};
+            banned_[parent].push_back(id);
+            retries_[parent] = std::max(retries_[parent], retries_[id]) + 1;  // strictly more: it ends
+            if (t_.nodes[id].kind != NodeKind::Chain && t_.stats.merges > 0) --t_.stats.merges;
+            activate(parent);
+        }
+        in_struts_[id].clear();
+        incoming_[id] = 0;
+        if (t_.nodes[id].kind == NodeKind::Leaf) {
+            width_[id] = p_.d_min;
+            run_[id] = 0;
+            ++retries_[id];
+            if (active_[id]) retire(id);
+            activate(id);
+        } else {
+            if (active_[id]) retire(id);
+            if (t_.nodes[id].kind == NodeKind::Chain && t_.stats.steps > 0) --t_.stats.steps;
+            t_.nodes[id].kind = NodeKind::Dropped;
+        }
+        ++t_.stats.undone;
+        return true;
     }
 
     void drop_with_branches(int id) {
@@ -372,6 +406,7 @@ private:
         retire(id);
         switch (c.type) {
             case Target::InCone:
+                run_[c.other] = 0;  // now a branch point: a new run starts here
                 connect(id, c.other);
                 width_[c.other] = merged_width(p_, {width_[c.other], bottom_width(id, c.point)});
                 ++t_.stats.merges;
@@ -380,6 +415,7 @@ private:
                 double w = merged_width(p_, {bottom_width(id, c.point), bottom_width(c.other, c.point)});
                 retire(c.other);
                 int s = add_node(c.point, NodeKind::Merge, {}, w);
+                retries_[s] = std::max(retries_[id], retries_[c.other]);
                 connect(id, s);
                 connect(c.other, s);
                 activate(s);
@@ -429,6 +465,8 @@ private:
         }
         retire(id);
         int c = add_node(best, NodeKind::Chain, {}, bottom_width(id, best));
+        run_[c] = run_[id] + distance(a, best);
+        retries_[c] = retries_[id];
         connect(id, c);
         activate(c);
         ++t_.stats.steps;
@@ -444,6 +482,9 @@ private:
     std::vector<char> active_;
     std::vector<int> incoming_;
     std::vector<std::vector<int>> in_struts_;
+    std::vector<double> run_;  // bends: length of the unbranched run above them
+    std::vector<int> retries_;               // how often a node was sent back by undo_joins
+    std::vector<std::vector<int>> banned_;   // nodes a node may not join again
     ActiveGrid grid_;
     std::priority_queue<std::pair<double, int>> heap_;  // highest first, then lowest id
 };
@@ -485,20 +526,27 @@ std::optional<Vec3> first_hit_in_cone(const ModelQuery& model, const Vec3& apex,
 bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance,
                     bool onto_model) {
     if (model.segment_hits(a, b)) return false;
-    double ra = 0.5 * wa + clearance, rb = 0.5 * wb + clearance;
-    for (auto [sx, sy] : {std::pair{1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
-        Vec3 ea = a + Vec3{sx * ra, sy * ra, 0}, eb = b + Vec3{sx * rb, sy * rb, 0};
-        if (model.segment_hits(ea, eb)) return false;
+    // The strut's own edges, and the same pushed out by the clearance (a bump of the model can
+    // slip between the outer lines and still cut the strut, so both are asked).
+    for (double c : {0.0, clearance}) {
+        if (c == clearance && c == 0.0 && clearance != 0.0) continue;
+        double ra = 0.5 * wa + c, rb = 0.5 * wb + c;
+        for (auto [sx, sy] : {std::pair{1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
+            Vec3 ea = a + Vec3{sx * ra, sy * ra, 0}, eb = b + Vec3{sx * rb, sy * rb, 0};
+            if (model.segment_hits(ea, eb)) return false;
+        }
+        if (clearance == 0.0) break;
     }
     // The edges miss a bump of the model that pokes between them: also keep a ball around the
     // axis, as wide as the strut's square (half-diagonal), free of the model.
     double len = distance(a, b);
     int steps = std::max(1, static_cast<int>(std::ceil(len / std::clamp(0.5 * std::min(wa, wb), 0.25, 1.0))));
-    // A strut onto the model ends a tip's length above it: near that end the edges judge.
+    // A strut onto the model ends a tip's length above it: near that end the balls shrink so they
+    // stay clear of the contact itself (they still catch a bump between the edges).
+    double end_room = onto_model ? 0.9 * std::sqrt(model.squared_distance(b)) : INFINITY;
     for (int i = 0; i <= steps; ++i) {
         double t = double(i) / steps;
-        double r = (0.5 * (wa + (wb - wa) * t)) * std::sqrt(2.0);
-        if (onto_model && (1 - t) * len < r) break;
+        double r = std::min((0.5 * (wa + (wb - wa) * t)) * std::sqrt(2.0), (1 - t) * len + end_room);
         if (model.squared_distance(a + (b - a) * t) < r * r) return false;
     }
     return true;
