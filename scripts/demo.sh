@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh >/dev/null
-model=${1:-examples/models/arches.stl}
+model=${1:-examples/models/molecule.stl}
 name=$(basename "${model%.*}")
 out=out/$name
 echo

@@ -133,13 +133,14 @@ Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::str
         o.decided_by = "overhang area";
         return o;
     }
-    for (size_t i = 0; i < n_eval; ++i) {
+    // Each candidate's tree is independent: build them side by side.
+    tbb::parallel_for(size_t(0), n_eval, [&](size_t i) {
         auto& c = o.candidates[i];
         Mesh rotated = mesh;
         for (auto& v : rotated.vertices) v = c.rotation.apply(v);
         c.support = support(rotated);
         c.evaluated = true;
-    }
+    });
     size_t best = 0;
     std::string why = "overhang area";
     for (size_t i = 1; i < n_eval; ++i) {

@@ -312,6 +312,12 @@ private:
     void support(int id) {
         std::vector<Candidate> cands;
         collect_contacts(id, cands);
+        // The columns baseline is what plain slicer supports do: straight down to whatever is
+        // below, the model or the bed, no questions asked (unless the model is off limits).
+        if (!tree() && !cands.empty() && (p_.supports_on_model || cands[0].type == Target::Bed)) {
+            accept(id, cands[0]);
+            return;
+        }
         double bound = INFINITY;
         for (const auto& c : cands) bound = std::min(bound, c.dist);
         if (tree()) collect_merges(id, bound * (1 + 1e-9), cands);
