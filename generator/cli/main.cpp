@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
     std::string input, out_dir, orient = "auto";
     double scale = 1;
     std::optional<double> fit;
-    bool do_render = false, quiet = false, verbose = false, as_json = false, no_si = false;
+    bool do_render = false, quiet = false, verbose = false, as_json = false, no_si = false, no_timings = false;
     ParamFlags gen;
     app.add_option("input", input, "Mesh file: .stl (ASCII or binary), .obj, .off, .ply");
     app.add_option("--out", out_dir, "Output directory (default out/<name>)");
@@ -121,6 +121,7 @@ int main(int argc, char** argv) {
     app.add_option("--orient", orient, "auto (least support), keep, or RX,RY,RZ in degrees")->capture_default_str();
     app.add_flag("--render", do_render, "Also render <name>.scad with OpenSCAD into <name>.union.stl");
     app.add_flag("--no-self-intersection-check", no_si, "Skip counting self-intersections of the input");
+    app.add_flag("--no-timings", no_timings, "Leave stage times out of the report: byte-identical reports run to run");
     app.add_flag("-q,--quiet", quiet, "Print errors only");
     app.add_flag("-v,--verbose", verbose, "Print every stage as it starts");
     app.add_flag("--json", as_json, "Print the report JSON on stdout instead of the summary");
@@ -199,6 +200,7 @@ int main(int argc, char** argv) {
         job.fit = fit;
         job.orient = orient;
         job.self_intersection_check = !no_si;
+        job.timings = !no_timings;
         job.params = gen.resolve();
         auto progress = [&](const std::string& stage) {
             if (verbose) std::fprintf(stderr, "  %s...\n", stage.c_str());

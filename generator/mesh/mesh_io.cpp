@@ -129,8 +129,9 @@ T read_le(const unsigned char* p) {
 
 Mesh parse_stl(std::string_view bytes, const std::string& name) {
     size_t start = bytes.find_first_not_of(" \t\r\n");
+    // Keywords are case-insensitive; look for "facet" in the first few KiB only.
     bool looks_ascii = start != std::string_view::npos && lower(std::string(bytes.substr(start, 5))) == "solid" &&
-                       bytes.find("facet") != std::string_view::npos;
+                       lower(std::string(bytes.substr(0, 4096))).find("facet") != std::string::npos;
     if (bytes.size() < 84) {
         if (looks_ascii) return parse_ascii_stl(bytes, name);
         fail(name, "only " + std::to_string(bytes.size()) + " bytes: too short to be an STL file",
@@ -174,7 +175,6 @@ Mesh parse_obj(std::string_view text, const std::string& name) {
     Mesh m;
     Lines lines{text};
     std::string_view line;
-    std::vector<std::array<long, 0>> unused;
     struct PendingFace {
         std::vector<long> idx;
         size_t line_no;
@@ -222,14 +222,15 @@ Mesh parse_obj(std::string_view text, const std::string& name) {
 // ---------------------------------------------------------------- OFF
 
 Mesh parse_off(std::string_view text, const std::string& name) {
-    // Tokenise without comments; OFF allows free line breaks between numbers.
+    // Tokens with the line they came from: a face line may end in a colour (integers or floats).
     std::vector<std::string_view> tok;
+    std::vector<size_t> tok_line;
     Lines lines{text};
     std::string_view line;
     while (lines.next(line)) {
         auto hash = line.find('#');
         if (hash != std::string_view::npos) line = line.substr(0, hash);
-        for (auto t : split_ws(line)) tok.push_back(t);
+        for (auto t : split_ws(line)) tok.push_back(t), tok_line.push_back(lines.line_no);
     }
     size_t i = 0;
     if (tok.empty() || tok[0].size() < 3 || tok[0].substr(tok[0].size() - 3) != "OFF")
@@ -258,6 +259,7 @@ Mesh parse_off(std::string_view text, const std::string& name) {
         long n;
         if (i >= tok.size() || !to_long(tok[i], n) || n < 0 || static_cast<size_t>(n) > tok.size() - i - 1)
             fail(name, "OFF file ends before its " + std::to_string(nf) + " faces (truncated)", kReexport);
+        size_t face_line = tok_line[i];
         ++i;
         std::vector<std::uint32_t> poly;
         for (long k = 0; k < n; ++k, ++i) {
@@ -266,8 +268,8 @@ Mesh parse_off(std::string_view text, const std::string& name) {
                 fail(name, "OFF face " + std::to_string(f) + " has a bad vertex index", kReexport);
             poly.push_back(static_cast<std::uint32_t>(idx));
         }
-        // Skip an optional colour after the indices: it ends at the next face's count.
-        while (i < tok.size() && f + 1 < nf && tok[i].find('.') != std::string_view::npos) ++i;
+        // Whatever follows the indices on the face's line is its colour.
+        while (i < tok.size() && tok_line[i] == face_line) ++i;
         add_polygon(m, poly);
     }
     return m;

@@ -180,41 +180,68 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
     for (size_t i = 0; i < m.faces.size(); ++i)
         if (flip[i]) std::swap(m.faces[i][1], m.faces[i][2]);
 
-    // 5. Turn each patch outward: positive volume, unless it is nested an odd number of times
-    //    inside the others (a cavity), where it must face inward.
+    // 5. Turn each patch outward. Volumes are taken about the bounding box centre so an open
+    //    patch's volume does not depend on where the origin is.
+    const Vec3 centre = box.center();
     std::vector<std::vector<size_t>> patch_faces(patches);
     for (size_t i = 0; i < m.faces.size(); ++i) patch_faces[patch[i]].push_back(i);
     std::vector<double> volume(patches, 0);
     for (int p = 0; p < patches; ++p)
         for (size_t fi : patch_faces[p]) {
             const auto& f = m.faces[fi];
-            volume[p] += dot(m.vertices[f[0]], cross(m.vertices[f[1]], m.vertices[f[2]])) / 6.0;
+            volume[p] += dot(m.vertices[f[0]] - centre, cross(m.vertices[f[1]] - centre, m.vertices[f[2]] - centre)) / 6.0;
         }
-    std::vector<char> dropped(m.faces.size(), 0);
-    for (int p = 0; p < patches; ++p) {
-        int depth = 0;
-        if (patches > 1 && patches <= 64) {
-            Vec3 probe = m.vertices[m.faces[patch_faces[p][0]][0]];
+    // Nesting: q contains p when every probe of p (corners spread over its faces) lies inside q.
+    // A patch only partly inside another (intersecting shells) is not nested in it.
+    std::vector<int> parent(patches, -1), depth(patches, 0);
+    if (patches > 1 && patches <= 64) {
+        std::vector<std::vector<char>> contains(patches, std::vector<char>(patches, 0));
+        for (int p = 0; p < patches; ++p) {
+            std::vector<Vec3> probes;
+            size_t n = patch_faces[p].size(), step = std::max<size_t>(1, n / 8);
+            for (size_t k = 0; k < n && probes.size() < 8; k += step) probes.push_back(m.vertices[m.faces[patch_faces[p][k]][0]]);
+            for (int q = 0; q < patches; ++q) {
+                if (q == p || std::abs(volume[q]) == 0) continue;
+                contains[q][p] = std::all_of(probes.begin(), probes.end(),
+                                             [&](const Vec3& x) { return inside_by_parity(m, patch_faces[q], x); });
+                depth[p] += contains[q][p];
+            }
+        }
+        for (int p = 0; p < patches; ++p)
             for (int q = 0; q < patches; ++q)
-                if (q != p && std::abs(volume[q]) > 0 && inside_by_parity(m, patch_faces[q], probe)) ++depth;
+                if (contains[q][p] && (parent[p] < 0 || depth[q] > depth[parent[p]])) parent[p] = q;
+    }
+    std::vector<int> order(patches);
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return depth[a] < depth[b]; });
+    std::vector<char> dropped(m.faces.size(), 0), patch_flipped(patches, 0), patch_dropped(patches, 0);
+    auto turn = [&](int p) {
+        for (size_t fi : patch_faces[p]) {
+            std::swap(m.faces[fi][1], m.faces[fi][2]);
+            flip[fi] = !flip[fi];
         }
-        // A shell nested inside another keeps its orientation: facing in, it is a cavity as
-        // authored; facing out, it is a solid overlapping the other (slicers unite those).
-        // Only a free-standing shell that faces in is turned.
-        bool nested = depth % 2 == 1;
-        if (nested && volume[p] > 0) {
-            // A solid wholly inside another adds nothing printable, and its faces are not
-            // surfaces of the print: they must not count as overhangs. Drop it.
-            for (size_t fi : patch_faces[p]) dropped[fi] = 1;
-            ++r.inner_shells_removed;
+        volume[p] = -volume[p];
+        patch_flipped[p] = 1;
+    };
+    for (int p : order) {
+        int q = parent[p];
+        if (q < 0 || patch_dropped[q]) {
+            if (volume[p] < 0) turn(p);  // free-standing and facing in: turn it out
             continue;
         }
-        if (!nested && volume[p] < 0) {
-            for (size_t fi : patch_faces[p]) {
-                std::swap(m.faces[fi][1], m.faces[fi][2]);
-                flip[fi] = !flip[fi];
+        // Nested: a file turned inside out as a whole is turned back as a whole, so a shell
+        // follows its container; then facing like the container it is a solid within a solid
+        // (nothing to print, and its faces are no surfaces of the print: dropped), facing
+        // against it a cavity (kept).
+        if (patch_flipped[q]) turn(p);
+        if ((volume[p] > 0) == (volume[q] > 0)) {
+            if (volume[q] > 0) {
+                for (size_t fi : patch_faces[p]) dropped[fi] = 1;
+                patch_dropped[p] = 1;
+                ++r.inner_shells_removed;
+            } else {
+                turn(p);  // a cavity within a cavity: an island, facing out
             }
-            volume[p] = -volume[p];
         }
     }
     r.flipped = 0;
@@ -230,7 +257,9 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
     face_components(m, shells);
     r.shells = static_cast<size_t>(shells);
 
-    double vol = signed_volume(m);
+    double vol = 0;
+    for (const auto& f : m.faces)
+        vol += dot(m.vertices[f[0]] - centre, cross(m.vertices[f[1]] - centre, m.vertices[f[2]] - centre)) / 6.0;
     if (!(std::abs(vol) > std::pow(extent, 3) * 1e-9))
         throw InputError(name + ": the mesh encloses no volume (it is flat or a single sheet); there is no solid to "
                                 "support. Export the solid body, not a surface.");

@@ -1,8 +1,8 @@
 // Making a raw triangle soup into a mesh the pipeline can trust, and putting it on the bed.
 //
 // repair_mesh welds identical vertices, drops degenerate and duplicate triangles, orients every
-// shell consistently and outward (a shell nested inside another keeps its orientation: facing in it
-// is a cavity, facing out a solid overlapping the other), and counts what it cannot fix (holes, non-manifold edges). Every change is reported as
+// shell consistently and outward (a shell wholly inside another follows its container: facing
+// against it, it is a cavity and kept; facing like it, a solid inside a solid, and dropped), and counts what it cannot fix (holes, non-manifold edges). Every change is reported as
 // a warning; only a mesh with nothing printable left is an InputError.
 #pragma once
 

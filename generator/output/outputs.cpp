@@ -138,11 +138,13 @@ std::string report_json(const Result& r, const Job& job) {
     double saved_v = r.columns.volume > 0 ? 1 - r.supports.volume / r.columns.volume : 0;
     double saved_l = r.columns.length > 0 ? 1 - r.supports.length / r.columns.length : 0;
     j["saving_vs_columns"] = {{"volume", saved_v}, {"length", saved_l}};
-    json stages = json::object();
-    double total = 0;
-    for (const auto& s : r.stages) stages[s.name] = s.seconds, total += s.seconds;
-    j["seconds"] = stages;
-    j["seconds_total"] = total;
+    if (job.timings) {  // wall-clock times differ from run to run: --no-timings leaves them out
+        json stages = json::object();
+        double total = 0;
+        for (const auto& s : r.stages) stages[s.name] = s.seconds, total += s.seconds;
+        j["seconds"] = stages;
+        j["seconds_total"] = total;
+    }
     j["warnings"] = r.warnings;
     return j.dump(2) + "\n";
 }
@@ -177,14 +179,30 @@ void write_outputs(const std::string& dir, const std::vector<OutputFile>& files)
         cleanup();
         throw OutputError(std::string(e.what()).replace(0, 0, "writing outputs: "));
     }
+    // Swap the set in: old files step aside first, so a failure half-way puts everything back.
+    std::vector<std::string> finals, backups;
+    auto roll_back = [&](size_t placed) {
+        for (size_t j = 0; j < placed; ++j) ::unlink(finals[j].c_str());
+        for (size_t j = 0; j < backups.size(); ++j)
+            if (!backups[j].empty()) ::rename(backups[j].c_str(), finals[j].c_str());
+        cleanup();
+    };
     for (size_t i = 0; i < files.size(); ++i) {
-        std::string final_path = dir + "/" + files[i].name;
-        if (::rename(temps[i].c_str(), final_path.c_str()) != 0) {
+        finals.push_back(dir + "/" + files[i].name);
+        backups.emplace_back();
+        struct stat st{};
+        if (lstat(finals[i].c_str(), &st) == 0 && !S_ISDIR(st.st_mode)) {
+            backups[i] = dir + "/." + files[i].name + ".previous";
+            if (::rename(finals[i].c_str(), backups[i].c_str()) != 0) backups[i].clear();
+        }
+        if (::rename(temps[i].c_str(), finals[i].c_str()) != 0) {
             int err = errno;
-            cleanup();
-            throw OutputError(final_path + ": cannot write: " + std::strerror(err) + ". Choose another --out directory.");
+            roll_back(i);
+            throw OutputError(finals[i] + ": cannot write: " + std::strerror(err) + ". Choose another --out directory.");
         }
     }
+    for (const auto& b : backups)
+        if (!b.empty()) ::unlink(b.c_str());
 }
 
 std::string human_summary(const Result& r, const std::string& dir) {

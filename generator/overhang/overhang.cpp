@@ -93,8 +93,11 @@ void rasterize_triangle(const Vec3& a0, const Vec3& b0, const Vec3& c0, double s
     double x0 = std::min({a.x, b.x, c.x}), x1 = std::max({a.x, b.x, c.x});
     double y0 = std::min({a.y, b.y, c.y}), y1 = std::max({a.y, b.y, c.y});
     const Vec3* e[3][2] = {{&a, &b}, {&b, &c}, {&c, &a}};
-    for (long i = static_cast<long>(std::ceil(x0 / s)); i * s <= x1; ++i) {
-        for (long j = static_cast<long>(std::ceil(y0 / s)); j * s <= y1; ++j) {
+    // Loop bounds from floor/ceil with a cell to spare: x0 / s may round past a lattice point
+    // lying exactly on the triangle (0.3 / 0.1 > 3); the edge functions decide exactly.
+    const long i1 = static_cast<long>(std::ceil(x1 / s)) + 1, j1 = static_cast<long>(std::ceil(y1 / s)) + 1;
+    for (long i = static_cast<long>(std::floor(x0 / s)) - 1; i <= i1; ++i) {
+        for (long j = static_cast<long>(std::floor(y0 / s)) - 1; j <= j1; ++j) {
             double px = i * s, py = j * s;
             bool inside = true;
             for (auto& edge : e) {

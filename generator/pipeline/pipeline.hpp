@@ -23,6 +23,7 @@ struct Job {
     std::optional<double> fit;   // then scale so the largest side is this (mm)
     std::string orient = "auto"; // auto | keep | RX,RY,RZ
     bool self_intersection_check = true;
+    bool timings = true;          // stage times in the report (the only part that differs run to run)
     Params params;
 };
 

@@ -1,0 +1,98 @@
+// Small closed test shapes for the unit tests, built from cells of a (non-uniform) grid so that a
+// T or a bridge is ONE closed, manifold, outward-facing mesh (no coplanar faces inside it, no
+// overlapping shells): only faces between a filled and an empty cell are emitted.
+#pragma once
+
+#include <map>
+#include <tuple>
+#include <vector>
+
+#include "core/geometry.hpp"
+
+namespace cs::test {
+
+struct CellGrid {
+    std::vector<double> xs, ys, zs;  // cell boundaries along each axis
+    std::vector<char> filled;        // (nx-1)*(ny-1)*(nz-1) cells
+
+    CellGrid(std::vector<double> x, std::vector<double> y, std::vector<double> z)
+        : xs(std::move(x)), ys(std::move(y)), zs(std::move(z)),
+          filled((xs.size() - 1) * (ys.size() - 1) * (zs.size() - 1), 0) {}
+    int nx() const { return static_cast<int>(xs.size()) - 1; }
+    int ny() const { return static_cast<int>(ys.size()) - 1; }
+    int nz() const { return static_cast<int>(zs.size()) - 1; }
+    bool at(int i, int j, int k) const {
+        if (i < 0 || j < 0 || k < 0 || i >= nx() || j >= ny() || k >= nz()) return false;
+        return filled[(k * ny() + j) * nx() + i];
+    }
+    void set(int i, int j, int k) { filled[(k * ny() + j) * nx() + i] = 1; }
+    // Fills every cell whose box lies inside [lo, hi].
+    void fill(Vec3 lo, Vec3 hi) {
+        for (int k = 0; k < nz(); ++k)
+            for (int j = 0; j < ny(); ++j)
+                for (int i = 0; i < nx(); ++i)
+                    if (xs[i] >= lo.x && xs[i + 1] <= hi.x && ys[j] >= lo.y && ys[j + 1] <= hi.y && zs[k] >= lo.z &&
+                        zs[k + 1] <= hi.z)
+                        set(i, j, k);
+    }
+
+    Mesh mesh() const {
+        Mesh m;
+        std::map<std::tuple<int, int, int>, std::uint32_t> index;
+        auto vid = [&](int i, int j, int k) {
+            auto [it, fresh] = index.emplace(std::tuple{i, j, k}, static_cast<std::uint32_t>(m.vertices.size()));
+            if (fresh) m.vertices.push_back({xs[i], ys[j], zs[k]});
+            return it->second;
+        };
+        // Quad with corners c0..c3 counter-clockwise seen from outside.
+        auto quad = [&](std::array<int, 3> c0, std::array<int, 3> c1, std::array<int, 3> c2, std::array<int, 3> c3) {
+            auto a = vid(c0[0], c0[1], c0[2]), b = vid(c1[0], c1[1], c1[2]), c = vid(c2[0], c2[1], c2[2]),
+                 d = vid(c3[0], c3[1], c3[2]);
+            m.faces.push_back({a, b, c});
+            m.faces.push_back({a, c, d});
+        };
+        for (int k = 0; k < nz(); ++k)
+            for (int j = 0; j < ny(); ++j)
+                for (int i = 0; i < nx(); ++i) {
+                    if (!at(i, j, k)) continue;
+                    if (!at(i - 1, j, k)) quad({i, j, k}, {i, j, k + 1}, {i, j + 1, k + 1}, {i, j + 1, k});
+                    if (!at(i + 1, j, k)) quad({i + 1, j, k}, {i + 1, j + 1, k}, {i + 1, j + 1, k + 1}, {i + 1, j, k + 1});
+                    if (!at(i, j - 1, k)) quad({i, j, k}, {i + 1, j, k}, {i + 1, j, k + 1}, {i, j, k + 1});
+                    if (!at(i, j + 1, k)) quad({i, j + 1, k}, {i, j + 1, k + 1}, {i + 1, j + 1, k + 1}, {i + 1, j + 1, k});
+                    if (!at(i, j, k - 1)) quad({i, j, k}, {i, j + 1, k}, {i + 1, j + 1, k}, {i + 1, j, k});
+                    if (!at(i, j, k + 1)) quad({i, j, k + 1}, {i + 1, j, k + 1}, {i + 1, j + 1, k + 1}, {i, j + 1, k + 1});
+                }
+        return m;
+    }
+};
+
+// A T: a 4 x 4 stem from the bed to z = 10 under a 20 x 10 x 2 plate (z 10..12), centred at the origin.
+// The plate's underside outside the stem (|x| or |y| > 2, z = 10) is the only overhang.
+inline Mesh t_shape() {
+    CellGrid g({-10, -2, 2, 10}, {-5, -2, 2, 5}, {0, 10, 12});
+    g.fill({-2, -2, 0}, {2, 2, 10});
+    g.fill({-10, -5, 10}, {10, 5, 12});
+    return g.mesh();
+}
+
+// A bridge: two 4 x 6 pillars (x -12..-8 and 8..12) from the bed to z = 8 under a 24 x 6 x 2 deck.
+// The deck's underside between the pillars (|x| < 8, z = 8) is the overhang.
+inline Mesh bridge_shape() {
+    CellGrid g({-12, -8, 8, 12}, {-3, 3}, {0, 8, 10});
+    g.fill({-12, -3, 0}, {-8, 3, 8});
+    g.fill({8, -3, 0}, {12, 3, 8});
+    g.fill({-12, -3, 8}, {12, 3, 10});
+    return g.mesh();
+}
+
+// A cantilever from a 4 mm column (x 0..4, z 0..20) reaching to x = 30 at z 20..22, over a low
+// separate box (x 12..24, y 2..8, z 0..5) standing on the bed below it.
+inline Mesh cantilever_over_box() {
+    CellGrid g({0, 4, 12, 24, 30}, {0, 2, 8, 10}, {0, 5, 20, 22});
+    g.fill({0, 0, 0}, {4, 10, 20});
+    g.fill({0, 0, 20}, {30, 10, 22});
+    g.fill({12, 2, 0}, {24, 8, 5});
+    return g.mesh();
+}
+
+}  // namespace cs::test

@@ -1,0 +1,210 @@
+// check/: the independent verifier passes what the pipeline builds and catches each kind of fault.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "check/check.hpp"
+#include "overhang/overhang.hpp"
+#include "query/model_query.hpp"
+#include "shapes.hpp"
+#include "struts/struts.hpp"
+#include "support.hpp"
+#include "tree/tree.hpp"
+
+using namespace cs;
+using cs::test::box;
+
+namespace {
+
+// The pipeline's pieces, run by hand: sample_overhangs -> grow_tree -> size_struts -> build_bodies.
+std::vector<Body> pipeline_bodies(const Mesh& model, const Params& p) {
+    ModelQuery q(model);
+    auto samples = sample_overhangs(model, {p.critical_angle, p.sampling_distance, p.layer_height});
+    SizedTree sized = size_struts(grow_tree(q, samples.samples, p), p);
+    return build_bodies(sized, p);
+}
+
+Mesh inverted(Mesh m) {
+    for (auto& f : m.faces) std::swap(f[1], f[2]);
+    return m;
+}
+
+Mesh with(const Mesh& supports, const Mesh& extra) {
+    Mesh m = supports;
+    append(m, extra);
+    return m;
+}
+
+struct Fixture {
+    Params p;
+    Mesh model = cs::test::t_shape();
+    std::vector<Body> bodies = pipeline_bodies(model, p);
+    Mesh supports = bodies_mesh(bodies, p.wall_thickness);
+    CheckResult check(const Mesh& s) const { return check_supports(model, s, p, {}); }
+};
+
+}  // namespace
+
+TEST(Check, PipelineSupportsForTheTShapePassEverything) {
+    Fixture f;
+    ASSERT_FALSE(f.bodies.empty());
+    CheckResult r = f.check(f.supports);
+    EXPECT_TRUE(r.ok()) << r.summary();
+    EXPECT_TRUE(r.coverage_ok()) << r.summary();
+    EXPECT_GT(r.overhang_points, 50u);
+    EXPECT_EQ(r.covered + r.exempt, r.overhang_points);
+    EXPECT_EQ(r.bodies, f.bodies.size());
+    EXPECT_EQ(r.open_bodies, 0u);
+    EXPECT_EQ(r.inward_bodies, 0u);
+    EXPECT_EQ(r.penetrating_bodies, 0u);
+    EXPECT_EQ(r.ungrounded_bodies, 0u);
+    EXPECT_EQ(r.steep_bodies, 0u);
+    EXPECT_TRUE(r.model_closed);
+    EXPECT_LE(r.max_angle, f.p.critical_angle + 0.5);
+    EXPECT_GT(r.worst_length_to_width, 0);
+}
+
+TEST(Check, PipelineSupportsForTheBridgeAndCantileverPass) {
+    for (const Mesh& model : {cs::test::bridge_shape(), cs::test::cantilever_over_box()}) {
+        Params p;
+        Mesh supports = bodies_mesh(pipeline_bodies(model, p), p.wall_thickness);
+        CheckResult r = check_supports(model, supports, p, {});
+        EXPECT_TRUE(r.ok()) << r.summary();
+    }
+}
+
+TEST(Check, NoSupportsFailCoverageOnly) {
+    Fixture f;
+    CheckResult r = f.check(Mesh{});
+    EXPECT_FALSE(r.coverage_ok());
+    // Points within reach of the stem are anchored by it (the printer bridges from it); the rest is not.
+    EXPECT_LT(r.covered + r.exempt, r.overhang_points);
+    for (const auto& u : r.uncovered) EXPECT_GT(std::max(std::abs(u.x), std::abs(u.y)), 2.0);
+    EXPECT_EQ(r.bodies, 0u);
+    EXPECT_FALSE(r.uncovered.empty());
+    EXPECT_FALSE(r.ok());
+}
+
+TEST(Check, ModelWithoutOverhangNeedsNoSupport) {
+    Params p;
+    CheckResult r = check_supports(box({0, 0, 0}, {10, 10, 10}), Mesh{}, p, {});
+    EXPECT_TRUE(r.ok()) << r.summary();
+    EXPECT_EQ(r.overhang_points, 0u);
+}
+
+TEST(Check, RemovingHalfTheSupportsFailsCoverage) {
+    Fixture f;
+    std::vector<Body> left;
+    for (const auto& b : f.bodies)
+        if (b.top.x <= 0 && b.bottom.x <= 0) left.push_back(b);
+    ASSERT_LT(left.size(), f.bodies.size());
+    ASSERT_FALSE(left.empty());
+    CheckResult r = f.check(bodies_mesh(left, f.p.wall_thickness));
+    EXPECT_FALSE(r.coverage_ok()) << r.summary();
+    EXPECT_FALSE(r.ok());
+    EXPECT_GT(r.covered, 0u);  // the left half is still covered
+    ASSERT_FALSE(r.uncovered.empty());
+    for (const auto& u : r.uncovered) EXPECT_GT(u.x, -f.p.sampling_distance) << "uncovered point on the kept side";
+    EXPECT_NE(r.summary().find("FAIL coverage"), std::string::npos);
+}
+
+TEST(Check, SupportBoxPushedIntoTheModelFailsPenetration) {
+    Fixture f;
+    // From the bed up 1 mm into the plate (underside z = 10, top z = 12), beside the stem.
+    Mesh bad = box({5, -1, 0}, {7, 1, 11});
+    CheckResult r = f.check(with(f.supports, bad));
+    EXPECT_EQ(r.penetrating_bodies, 1u) << r.summary();
+    EXPECT_GT(r.max_penetration, CheckOptions{}.penetration_tolerance);
+    EXPECT_FALSE(r.ok());
+    EXPECT_TRUE(r.coverage_ok());
+    EXPECT_EQ(r.ungrounded_bodies, 0u);
+    EXPECT_NE(r.summary().find("FAIL penetration"), std::string::npos);
+}
+
+TEST(Check, SupportBoxInsideTheStemFailsPenetration) {
+    Fixture f;
+    Mesh bad = box({-1, -1, 1}, {1, 1, 5});  // wholly inside the stem, standing on nothing but the model
+    CheckResult r = f.check(with(f.supports, bad));
+    EXPECT_EQ(r.penetrating_bodies, 1u) << r.summary();
+    EXPECT_FALSE(r.ok());
+}
+
+TEST(Check, FloatingSupportBoxFailsGrounding) {
+    Fixture f;
+    Mesh floating = box({30, 0, 5}, {32, 2, 7});  // beside the model, touching nothing
+    CheckResult r = f.check(with(f.supports, floating));
+    EXPECT_EQ(r.ungrounded_bodies, 1u) << r.summary();
+    EXPECT_FALSE(r.ok());
+    EXPECT_EQ(r.penetrating_bodies, 0u);
+    EXPECT_EQ(r.open_bodies + r.inward_bodies, 0u);
+    EXPECT_NE(r.summary().find("FAIL grounding"), std::string::npos);
+}
+
+TEST(Check, BoxStackedOnAGroundedBoxIsGrounded) {
+    Fixture f;
+    Mesh tower = box({30, 0, 0}, {32, 2, 5});
+    append(tower, box({30.5, 0.5, 4.9}, {31.5, 1.5, 8}));
+    CheckResult r = f.check(with(f.supports, tower));
+    EXPECT_EQ(r.ungrounded_bodies, 0u) << r.summary();
+    EXPECT_TRUE(r.ok()) << r.summary();
+}
+
+TEST(Check, InvertedSupportBoxFailsClosedCheck) {
+    Fixture f;
+    Mesh inward = inverted(box({30, 0, 0}, {32, 2, 5}));  // on the bed, faces pointing in
+    CheckResult r = f.check(with(f.supports, inward));
+    EXPECT_EQ(r.inward_bodies, 1u) << r.summary();
+    EXPECT_EQ(r.open_bodies, 0u);
+    EXPECT_FALSE(r.ok());
+    EXPECT_NE(r.summary().find("FAIL closed"), std::string::npos);
+}
+
+TEST(Check, OpenSupportBoxFailsClosedCheck) {
+    Fixture f;
+    Mesh open = box({30, 0, 0}, {32, 2, 5});
+    open.faces.pop_back();
+    CheckResult r = f.check(with(f.supports, open));
+    EXPECT_EQ(r.open_bodies, 1u) << r.summary();
+    EXPECT_FALSE(r.ok());
+}
+
+TEST(Check, StrutSteeperThanTheCriticalAngleFailsAngles) {
+    Fixture f;
+    // On the bed, away from the model, 63 degrees from vertical (critical 50).
+    Body steep{BodyKind::Strut, Profile::Square, {30, 0, 0}, {40, 0, 5}, 1.0, 1.0};
+    CheckResult r = f.check(with(f.supports, body_mesh(steep, f.p.wall_thickness)));
+    EXPECT_EQ(r.steep_bodies, 1u) << r.summary();
+    EXPECT_NEAR(r.max_angle, std::atan2(10.0, 5.0) * 180 / M_PI, 0.5);
+    EXPECT_FALSE(r.ok());
+    EXPECT_EQ(r.ungrounded_bodies, 0u);
+    EXPECT_NE(r.summary().find("FAIL angles"), std::string::npos);
+    // Within the angle (45 degrees) it passes.
+    Body ok{BodyKind::Strut, Profile::N, {30, 0, 0}, {35, 0, 5}, 2.0, 2.0};
+    CheckResult r2 = f.check(with(f.supports, body_mesh(ok, f.p.wall_thickness)));
+    EXPECT_EQ(r2.steep_bodies, 0u) << r2.summary();
+}
+
+TEST(Check, JsonReportsTheSameVerdict) {
+    Fixture f;
+    CheckResult good = f.check(f.supports);
+    EXPECT_NE(good.json().find("\"ok\": true"), std::string::npos) << good.json();
+    CheckResult bad = f.check(Mesh{});
+    EXPECT_NE(bad.json().find("\"ok\": false"), std::string::npos) << bad.json();
+}
+
+TEST(Check, SplitShellsAndClosedness) {
+    Mesh two = box({0, 0, 0}, {1, 1, 1});
+    append(two, box({3, 0, 0}, {4, 1, 1}));
+    auto shells = split_shells(two);
+    ASSERT_EQ(shells.size(), 2u);
+    for (const auto& s : shells) {
+        EXPECT_TRUE(is_closed_and_consistent(s));
+        EXPECT_NEAR(signed_volume(s), 1, 1e-12);
+    }
+    Mesh flipped_one = box({0, 0, 0}, {1, 1, 1});
+    std::swap(flipped_one.faces[0][1], flipped_one.faces[0][2]);
+    EXPECT_FALSE(is_closed_and_consistent(flipped_one));
+    Mesh open = box({0, 0, 0}, {1, 1, 1});
+    open.faces.pop_back();
+    EXPECT_FALSE(is_closed_and_consistent(open));
+}

@@ -1,0 +1,174 @@
+// Orientation: obvious least-support poses, rigid rotations, `keep`, determinism.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/errors.hpp"
+#include "mesh/repair.hpp"
+#include "orient/orient.hpp"
+#include "overhang/overhang.hpp"
+#include "pipeline/pipeline.hpp"
+#include "support.hpp"
+
+namespace cs::test {
+namespace {
+
+Mesh join(std::initializer_list<Mesh> parts) {
+    Mesh m;
+    for (const auto& p : parts) append(m, p);
+    return m;
+}
+
+// A closed solid: the counter-clockwise polygon (x, z) swept along y from y0 to y1. Caps are
+// triangulated by ear clipping, so the solid has no internal faces (unlike a union of boxes).
+Mesh extrude_xz(const std::vector<std::array<double, 2>>& poly, double y0, double y1) {
+    const auto n = static_cast<std::uint32_t>(poly.size());
+    Mesh m;
+    for (double y : {y0, y1})
+        for (const auto& q : poly) m.vertices.push_back({q[0], y, q[1]});
+    auto cross2 = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+        return (poly[b][0] - poly[a][0]) * (poly[c][1] - poly[a][1]) - (poly[b][1] - poly[a][1]) * (poly[c][0] - poly[a][0]);
+    };
+    std::vector<std::uint32_t> idx(n);
+    for (std::uint32_t i = 0; i < n; ++i) idx[i] = i;
+    std::vector<Triangle> cap;
+    while (idx.size() > 3) {
+        for (size_t i = 0; i < idx.size(); ++i) {
+            auto a = idx[(i + idx.size() - 1) % idx.size()], b = idx[i], c = idx[(i + 1) % idx.size()];
+            if (cross2(a, b, c) <= 0) continue;
+            bool empty = true;
+            for (auto q : idx)
+                if (q != a && q != b && q != c && cross2(a, b, q) >= 0 && cross2(b, c, q) >= 0 && cross2(c, a, q) >= 0)
+                    empty = false;
+            if (!empty) continue;
+            cap.push_back({a, b, c});
+            idx.erase(idx.begin() + static_cast<long>(i));
+            break;
+        }
+    }
+    cap.push_back({idx[0], idx[1], idx[2]});
+    // The polygon is counter-clockwise in (x, z) seen from -y: the y0 cap faces -y as listed.
+    for (auto t : cap) m.faces.push_back({t[0], t[1], t[2]}), m.faces.push_back({n + t[0], n + t[2], n + t[1]});
+    for (std::uint32_t i = 0; i < n; ++i) {
+        std::uint32_t j = (i + 1) % n;
+        m.faces.push_back({i, n + i, n + j});
+        m.faces.push_back({i, n + j, j});
+    }
+    if (signed_volume(m) < 0)
+        for (auto& f : m.faces) std::swap(f[1], f[2]);
+    return m;
+}
+
+Mesh tee() { return extrude_xz({{-3, 0}, {3, 0}, {3, 20}, {15, 20}, {15, 24}, {-15, 24}, {-15, 20}, {-3, 20}}, -5, 5); }
+
+// Runs the real orientation search (overhang area, then support volume of real trees).
+Orientation orient(const Mesh& m, const std::string& mode = "auto") {
+    Params p;
+    return choose_orientation(m, p, mode, [&](const Mesh& rotated) {
+        Placement pl;
+        Rotation id;
+        Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
+        OverhangOptions oo{p.critical_angle, p.sampling_distance, p.layer_height};
+        auto s = build_supports(placed, sample_overhangs(placed, oo).samples, p);
+        return PoseSupport{s.volume, s.sized.tree.stats.model_contacts, bounding_box(placed).size().z};
+    });
+}
+
+Mesh rotated(const Mesh& m, const Rotation& r) {
+    Mesh out = m;
+    for (auto& v : out.vertices) v = r.apply(v);
+    return out;
+}
+
+double placed_overhang_area(const Mesh& m, const Rotation& r) {
+    Placement pl;
+    Rotation id;
+    Mesh placed = place_on_bed(rotated(m, r), 1.0, id.m, pl);
+    return overhang_area(placed, {50, 1.5, 0.2});
+}
+
+// Upright, a T's wings overhang. Plate down or lying on its flat side it needs nothing; of
+// those, the flat side is lower (the tie-break), so that is where it ends.
+TEST(Orient, TGoesWhereItNeedsNoSupport) {
+    Mesh t = tee();
+    ASSERT_GT(placed_overhang_area(t, Rotation{}), 100.0);
+    auto o = orient(t);
+    EXPECT_LT(placed_overhang_area(t, o.rotation), 1.0);
+    EXPECT_NEAR(std::abs(o.rotation.apply({0, 1, 0}).z), 1, 1e-9) << "lying on its flat side";
+    EXPECT_EQ(o.decided_by, "height");
+}
+
+// An L lying on its long arm needs nothing; standing on its short arm its long arm overhangs.
+TEST(Orient, LLiesOnItsLongArm) {
+    Mesh l = extrude_xz({{0, 0}, {20, 0}, {20, 5}, {5, 5}, {5, 40}, {0, 40}}, 0, 10);  // long arm vertical
+    auto o = orient(l);
+    EXPECT_LT(placed_overhang_area(l, o.rotation), 1.0);
+    Placement pl;
+    Rotation id;
+    Box3 b = bounding_box(place_on_bed(rotated(l, o.rotation), 1.0, id.m, pl));
+    EXPECT_LT(b.size().z, 20.5) << "lying down, the L is at most as tall as its short arm";
+}
+
+// A bowl (here a trough: a U swept along y) upside down must be turned over, opening up.
+TEST(Orient, BowlIsTurnedRightSideUp) {
+    Mesh bowl = extrude_xz({{-20, 0}, {20, 0}, {20, 25}, {17, 25}, {17, 3}, {-17, 3}, {-17, 25}, {-20, 25}}, -20, 20);
+    Rotation flip;  // upside down: half a turn about X
+    flip.m[1][1] = -1, flip.m[2][2] = -1;
+    Mesh upside_down = rotated(bowl, flip);
+    ASSERT_GT(placed_overhang_area(upside_down, Rotation{}), 1000.0);
+    auto o = orient(upside_down);
+    EXPECT_LT(placed_overhang_area(upside_down, o.rotation), 1.0);
+}
+
+TEST(Orient, RotationIsRigid) {
+    Mesh m = tee();
+    auto o = orient(m);
+    Mesh r = rotated(m, o.rotation);
+    EXPECT_NEAR(signed_volume(r), signed_volume(m), 1e-6 * signed_volume(m));
+    for (const auto& f : m.faces)
+        for (int k = 0; k < 3; ++k) {
+            double before = distance(m.vertices[f[k]], m.vertices[f[(k + 1) % 3]]);
+            double after = distance(r.vertices[f[k]], r.vertices[f[(k + 1) % 3]]);
+            EXPECT_NEAR(before, after, 1e-9);
+        }
+}
+
+TEST(Orient, KeepChangesNothing) {
+    Mesh m = tee();
+    auto o = orient(m, "keep");
+    EXPECT_EQ(o.decided_by, "kept");
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) EXPECT_EQ(o.rotation.m[i][j], i == j ? 1.0 : 0.0);
+}
+
+TEST(Orient, EulerAnglesAreApplied) {
+    Mesh m = box({0, 0, 0}, {1, 1, 1});
+    auto o = orient(m, "90,0,0");
+    EXPECT_EQ(o.decided_by, "given");
+    Vec3 y = o.rotation.apply({0, 1, 0});
+    EXPECT_NEAR(y.z, 1, 1e-12);  // rotate([90,0,0]) takes +Y to +Z, as in OpenSCAD
+    EXPECT_THROW(orient(m, "90,0"), ParameterError);
+    EXPECT_THROW(orient(m, "sideways"), ParameterError);
+}
+
+TEST(Orient, Deterministic) {
+    Mesh m = join({box({0, 0, 0}, {5, 10, 40}), box({5, 0, 0}, {20, 10, 5}), box({-10, 0, 30}, {0, 10, 34})});
+    auto a = orient(m), b = orient(m);
+    ASSERT_EQ(a.candidates.size(), b.candidates.size());
+    EXPECT_EQ(a.chosen, b.chosen);
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) EXPECT_EQ(a.rotation.m[i][j], b.rotation.m[i][j]);
+    for (size_t i = 0; i < a.candidates.size(); ++i) EXPECT_EQ(a.candidates[i].overhang_area, b.candidates[i].overhang_area);
+}
+
+TEST(Orient, RotationToDownTakesTheDirectionToMinusZ) {
+    for (Vec3 d : {Vec3{0, 0, -1}, Vec3{0, 0, 1}, Vec3{1, 0, 0}, normalized(Vec3{1, 2, -3}), normalized(Vec3{-0.3, 0.1, 0.9})}) {
+        Vec3 r = rotation_to_down(d).apply(d);
+        EXPECT_NEAR(r.x, 0, 1e-12);
+        EXPECT_NEAR(r.y, 0, 1e-12);
+        EXPECT_NEAR(r.z, -1, 1e-12);
+    }
+}
+
+}  // namespace
+}  // namespace cs::test

@@ -1,0 +1,355 @@
+// overhang/: which faces need support, the global sampling lattice, edge and point overhangs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "overhang/overhang.hpp"
+#include "shapes.hpp"
+#include "support.hpp"
+
+using namespace cs;
+using cs::test::box;
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+// Lattice index of a sample point (it must be ON the lattice).
+std::pair<long, long> lattice_index(const Vec3& p, double s) {
+    long i = std::lround(p.x / s), j = std::lround(p.y / s);
+    EXPECT_EQ(p.x, i * s) << "x not on the lattice";
+    EXPECT_EQ(p.y, j * s) << "y not on the lattice";
+    return {i, j};
+}
+
+// How often each lattice point is produced by rasterising all `tris`.
+std::map<std::pair<long, long>, int> coverage(const std::vector<std::array<Vec3, 3>>& tris, double s) {
+    std::vector<Vec3> pts;
+    for (const auto& t : tris) rasterize_triangle(t[0], t[1], t[2], s, pts);
+    std::map<std::pair<long, long>, int> c;
+    for (const auto& p : pts) ++c[lattice_index(p, s)];
+    return c;
+}
+
+// Lattice points of the half-open rectangle [i0, i1) x [j0, j1) (in lattice steps): what one
+// rectangle gives under the top-left rule (its left and bottom edges own their points).
+std::map<std::pair<long, long>, int> half_open_rect(long i0, long i1, long j0, long j1) {
+    std::map<std::pair<long, long>, int> c;
+    for (long i = i0; i < i1; ++i)
+        for (long j = j0; j < j1; ++j) c[{i, j}] = 1;
+    return c;
+}
+
+// A rectangle of cells with corners on the lattice (corner (a, b) at (a*s, b*s) computed exactly as
+// the rasteriser computes lattice points), each cell split along one of its diagonals.
+std::vector<std::array<Vec3, 3>> split_cells(double s, int cells_x, int cells_y, int step, bool alternate) {
+    std::vector<std::array<Vec3, 3>> tris;
+    auto at = [&](long a, long b) { return Vec3{double(a) * s, double(b) * s, 5.0 + 0.01 * a}; };
+    for (int cx = 0; cx < cells_x; ++cx)
+        for (int cy = 0; cy < cells_y; ++cy) {
+            long a = cx * step, b = cy * step;
+            Vec3 p00 = at(a, b), p10 = at(a + step, b), p01 = at(a, b + step), p11 = at(a + step, b + step);
+            if (alternate && (cx + cy) % 2) {
+                tris.push_back({p00, p10, p01});
+                tris.push_back({p10, p11, p01});
+            } else {
+                tris.push_back({p00, p10, p11});
+                tris.push_back({p00, p11, p01});
+            }
+        }
+    return tris;
+}
+
+std::string describe(const std::map<std::pair<long, long>, int>& got, const std::map<std::pair<long, long>, int>& want) {
+    std::string s;
+    for (const auto& [k, n] : want)
+        if (!got.count(k)) s += " gap at (" + std::to_string(k.first) + "," + std::to_string(k.second) + ")";
+    for (const auto& [k, n] : got) {
+        if (n > 1) s += " double at (" + std::to_string(k.first) + "," + std::to_string(k.second) + ")";
+        if (!want.count(k)) s += " extra at (" + std::to_string(k.first) + "," + std::to_string(k.second) + ")";
+    }
+    return s.substr(0, 600);
+}
+
+OverhangOptions default_options() { return {50, 1.5, 0.2}; }
+
+}  // namespace
+
+// ---------------------------------------------------------------- classification
+
+TEST(NeedsSupport, Thresholds) {
+    const double s50 = std::sin(50 * kDeg);
+    EXPECT_TRUE(needs_support({0, 0, -1}, 50));
+    EXPECT_FALSE(needs_support({0, 0, 1}, 50));
+    EXPECT_FALSE(needs_support({1, 0, 0}, 50));  // a vertical wall
+    // n_z = -sin(critical): the face deviates from vertical by exactly the critical angle: printable.
+    EXPECT_FALSE(needs_support({std::cos(50 * kDeg), 0, -s50}, 50));
+    // A face 1 degree flatter than that needs support, 1 degree steeper does not.
+    EXPECT_TRUE(needs_support({std::cos(51 * kDeg), 0, -std::sin(51 * kDeg)}, 50));
+    EXPECT_FALSE(needs_support({std::cos(49 * kDeg), 0, -std::sin(49 * kDeg)}, 50));
+    // A 45 degree chamfer is fine at 50, not at 40.
+    Vec3 chamfer = normalized(Vec3{1, 0, -1});
+    EXPECT_FALSE(needs_support(chamfer, 50));
+    EXPECT_TRUE(needs_support(chamfer, 40));
+    EXPECT_FALSE(needs_support({0, 0, -1}, 90));  // nothing needs support at 90
+}
+
+TEST(ClassifyFaces, CubeOnBedHasNoOverhang) {
+    Mesh cube = box({-5, -5, 0}, {5, 5, 10});
+    auto cls = classify_faces(cube, default_options());
+    for (char c : cls) EXPECT_EQ(c, 0);
+    EXPECT_EQ(overhang_area(cube, default_options()), 0);
+    auto s = sample_overhangs(cube, default_options());
+    EXPECT_TRUE(s.samples.empty());
+    EXPECT_EQ(s.overhang_faces, 0u);
+    EXPECT_EQ(s.point_overhangs, 0u);
+}
+
+TEST(ClassifyFaces, FloatingCubeBottomIsOverhang) {
+    Mesh cube = box({0, 0, 3}, {6, 3, 5});
+    EXPECT_NEAR(overhang_area(cube, default_options()), 18, 1e-12);
+    auto s = sample_overhangs(cube, default_options());
+    EXPECT_EQ(s.overhang_faces, 2u);
+    ASSERT_FALSE(s.samples.empty());
+    for (const auto& x : s.samples) EXPECT_EQ(x.p.z, 3);
+    // Lattice points of the bottom face (0..6 x 0..3, spacing 1.5): all but those on its top/right edges.
+    std::set<std::pair<double, double>> face;
+    for (const auto& x : s.samples)
+        if (x.kind == SampleKind::Face) face.insert({x.p.x, x.p.y});
+    EXPECT_EQ(face.size(), 8u);  // x in {0,1.5,3,4.5}, y in {0,1.5}
+}
+
+// ---------------------------------------------------------------- the T shape
+
+TEST(SampleOverhangs, TShapeSamplesExactlyUnderThePlate) {
+    Mesh t = cs::test::t_shape();
+    auto o = default_options();
+    auto res = sample_overhangs(t, o);
+    EXPECT_NEAR(res.overhang_area, 20 * 10 - 4 * 4, 1e-9);
+    EXPECT_NEAR(overhang_area(t, o), 184, 1e-9);
+    EXPECT_EQ(res.point_overhangs, 0u);
+    ASSERT_FALSE(res.samples.empty());
+    std::map<std::pair<long, long>, int> face;
+    for (const auto& s : res.samples) {
+        // On the plate's underside, outside the stem: nowhere else.
+        EXPECT_EQ(s.p.z, 10) << s.p.x << "," << s.p.y;
+        EXPECT_GE(s.p.x, -10 - 1e-12);
+        EXPECT_LE(s.p.x, 10 + 1e-12);
+        EXPECT_GE(s.p.y, -5 - 1e-12);
+        EXPECT_LE(s.p.y, 5 + 1e-12);
+        EXPECT_FALSE(std::abs(s.p.x) < 2 - 1e-9 && std::abs(s.p.y) < 2 - 1e-9) << "sample over the stem at " << s.p.x << "," << s.p.y;
+        if (s.kind == SampleKind::Face) ++face[lattice_index(s.p, 1.5)];
+    }
+    // Every lattice point of the overhanging underside, once: x = 1.5 i in [-10, 10], y = 1.5 j in
+    // [-5, 5], not over the stem (no lattice point lies on any of these boundaries).
+    std::map<std::pair<long, long>, int> want;
+    for (long i = -6; i <= 6; ++i)
+        for (long j = -3; j <= 3; ++j)
+            if (!(std::abs(i) <= 1 && std::abs(j) <= 1)) want[{i, j}] = 1;
+    EXPECT_EQ(face, want) << describe(face, want);
+    // Extras (edges) keep at least half a spacing from every other sample.
+    for (size_t a = 0; a < res.samples.size(); ++a)
+        for (size_t b = a + 1; b < res.samples.size(); ++b)
+            if (res.samples[a].kind != SampleKind::Face || res.samples[b].kind != SampleKind::Face)
+                EXPECT_GE(distance(res.samples[a].p, res.samples[b].p), 0.75 - 1e-9);
+}
+
+TEST(SampleOverhangs, DownwardOctahedronTipIsAPointSample) {
+    // An octahedron raised 5 mm: its lower faces slope at 54.7 degrees from horizontal (normal
+    // n_z = -0.577, printable at 50), its lower edges at 45 degrees: only the tip needs support.
+    Mesh m;
+    m.vertices = {{0, 0, 5}, {5, 0, 10}, {0, 5, 10}, {-5, 0, 10}, {0, -5, 10}, {0, 0, 15}};
+    m.faces = {{0, 2, 1}, {0, 3, 2}, {0, 4, 3}, {0, 1, 4}, {5, 1, 2}, {5, 2, 3}, {5, 3, 4}, {5, 4, 1}};
+    ASSERT_GT(signed_volume(m), 0);
+    auto res = sample_overhangs(m, default_options());
+    EXPECT_EQ(res.overhang_faces, 0u);
+    EXPECT_EQ(res.point_overhangs, 1u);
+    ASSERT_EQ(res.samples.size(), 1u);
+    EXPECT_EQ(res.samples[0].kind, SampleKind::Point);
+    EXPECT_EQ(res.samples[0].p, (Vec3{0, 0, 5}));
+}
+
+TEST(SampleOverhangs, DownwardSquarePyramidApexIsAPointSample) {
+    // A square pyramid standing on its apex, 2 mm above the bed (on nothing).
+    Mesh m;
+    m.vertices = {{0.3, 0.2, 2}, {-4.7, -4.8, 12}, {5.3, -4.8, 12}, {5.3, 5.2, 12}, {-4.7, 5.2, 12}};
+    m.faces = {{0, 2, 1}, {0, 3, 2}, {0, 4, 3}, {0, 1, 4}, {1, 2, 3}, {1, 3, 4}};
+    ASSERT_GT(signed_volume(m), 0);
+    auto res = sample_overhangs(m, default_options());
+    ASSERT_EQ(res.samples.size(), 1u);
+    EXPECT_EQ(res.samples[0].kind, SampleKind::Point);
+    EXPECT_EQ(res.samples[0].p, (Vec3{0.3, 0.2, 2}));
+}
+
+TEST(SampleOverhangs, FlatPyramidKeepsItsApexExactly) {
+    // Lower faces flat enough to need support: the apex (no lattice point within half a spacing
+    // of it) is still a sample, at its exact position, and the lowest one.
+    Mesh m;
+    m.vertices = {{0.75, 0.75, 4}, {-9.25, -9.25, 6}, {10.75, -9.25, 6}, {10.75, 10.75, 6}, {-9.25, 10.75, 6}};
+    m.faces = {{0, 2, 1}, {0, 3, 2}, {0, 4, 3}, {0, 1, 4}, {1, 2, 3}, {1, 3, 4}};
+    auto res = sample_overhangs(m, default_options());
+    EXPECT_EQ(res.overhang_faces, 4u);
+    bool apex = false;
+    for (const auto& s : res.samples) apex |= s.kind == SampleKind::Point && s.p == Vec3{0.75, 0.75, 4};
+    EXPECT_TRUE(apex);
+    EXPECT_EQ(res.samples.back().p, (Vec3{0.75, 0.75, 4}));  // the lowest sample
+}
+
+TEST(SampleOverhangs, DownwardRidgeIsSampledAlongItsLength) {
+    // An upside-down roof: faces at 45 degrees (printable), the ridge between them is not.
+    Mesh m;
+    m.vertices = {{0, 0, 5}, {9, 0, 5}, {0, -5, 10}, {9, -5, 10}, {0, 5, 10}, {9, 5, 10}};
+    m.faces = {{0, 1, 3}, {0, 3, 2}, {0, 4, 5}, {0, 5, 1}, {2, 3, 5}, {2, 5, 4}, {0, 2, 4}, {1, 5, 3}};
+    ASSERT_GT(signed_volume(m), 0);
+    auto res = sample_overhangs(m, default_options());
+    EXPECT_EQ(res.overhang_faces, 0u);
+    EXPECT_EQ(res.ridge_edges, 1u);
+    ASSERT_EQ(res.samples.size(), 7u);  // 9 mm at 1.5 mm: both ends and 5 between
+    for (const auto& s : res.samples) {
+        EXPECT_EQ(s.kind, SampleKind::Edge);
+        EXPECT_EQ(s.p.y, 0);
+        EXPECT_EQ(s.p.z, 5);
+    }
+}
+
+TEST(SampleOverhangs, DeterministicAndSortedTopToBottom) {
+    // Overhangs at several heights: the T's plate (z 10), a floating box (z 3), a tip (z 6).
+    Mesh m = cs::test::t_shape();
+    append(m, box({14, -3, 3}, {19, 3, 4}));
+    Mesh tip;
+    tip.vertices = {{-20, 0, 6}, {-15, 0, 11}, {-20, 5, 11}, {-25, 0, 11}, {-20, -5, 11}, {-20, 0, 16}};
+    tip.faces = {{0, 2, 1}, {0, 3, 2}, {0, 4, 3}, {0, 1, 4}, {5, 1, 2}, {5, 2, 3}, {5, 3, 4}, {5, 4, 1}};
+    append(m, tip);
+    auto a = sample_overhangs(m, default_options());
+    auto b = sample_overhangs(m, default_options());
+    ASSERT_EQ(a.samples.size(), b.samples.size());
+    for (size_t i = 0; i < a.samples.size(); ++i) {
+        EXPECT_EQ(a.samples[i].p, b.samples[i].p);
+        EXPECT_EQ(a.samples[i].kind, b.samples[i].kind);
+    }
+    std::set<double> heights;
+    for (size_t i = 0; i < a.samples.size(); ++i) {
+        heights.insert(a.samples[i].p.z);
+        if (i == 0) continue;
+        const Vec3 &p = a.samples[i - 1].p, &q = a.samples[i].p;
+        bool ordered = p.z > q.z || (p.z == q.z && (p.x < q.x || (p.x == q.x && p.y < q.y)));
+        EXPECT_TRUE(ordered) << "sample " << i;
+    }
+    EXPECT_EQ(heights, (std::set<double>{3, 6, 10}));
+}
+
+TEST(SampleOverhangs, ShuffledFaceOrderGivesTheSameSamples) {
+    Mesh m = cs::test::t_shape();
+    Mesh r = m;
+    std::reverse(r.faces.begin(), r.faces.end());
+    for (auto& f : r.faces) std::rotate(f.begin(), f.begin() + 1, f.end());
+    auto a = sample_overhangs(m, default_options()), b = sample_overhangs(r, default_options());
+    ASSERT_EQ(a.samples.size(), b.samples.size());
+    for (size_t i = 0; i < a.samples.size(); ++i) EXPECT_EQ(a.samples[i].p, b.samples[i].p);
+}
+
+TEST(SampleOverhangs, NothingBelowTheFirstLayer) {
+    // The underside of a plate 0.1 mm above the bed is printed on the bed: no samples.
+    auto res = sample_overhangs(box({0, 0, 0.1}, {6, 6, 2}), default_options());
+    EXPECT_TRUE(res.samples.empty());
+}
+
+// ---------------------------------------------------------------- the lattice
+
+TEST(Rasterize, SquareSplitOnItsDiagonalEqualsTheWholeSquare) {
+    const double s = 1.5;
+    // Corners on lattice points; the diagonal passes through the lattice point (1.5, 1.5).
+    Vec3 a{0, 0, 1}, b{3, 0, 1}, c{3, 3, 1}, d{0, 3, 1};
+    auto want = half_open_rect(0, 2, 0, 2);
+    auto one = coverage({{a, b, c}, {a, c, d}}, s);
+    EXPECT_EQ(one, want) << describe(one, want);
+    auto other = coverage({{a, b, d}, {b, c, d}}, s);  // the other diagonal
+    EXPECT_EQ(other, want) << describe(other, want);
+    auto cw = coverage({{a, c, b}, {a, d, c}}, s);  // clockwise input
+    EXPECT_EQ(cw, want) << describe(cw, want);
+}
+
+TEST(Rasterize, TriangulatedRectangleHasNoGapsNoDoubles) {
+    const double s = 1.5;
+    // 4 x 3 cells of 2 x 2 lattice steps, diagonals alternating.
+    auto got = coverage(split_cells(s, 4, 3, 2, true), s);
+    auto want = half_open_rect(0, 8, 0, 6);
+    EXPECT_EQ(got, want) << describe(got, want);
+}
+
+TEST(Rasterize, NonDyadicSpacingWithCornersOnTheLattice) {
+    // Spacing 0.1 and 0.3 are not exact in binary: a cell corner at lattice point i*s must still
+    // give that point to exactly one cell (e.g. 3*0.1 / 0.1 rounds to 3.0000000000000004).
+    for (double s : {0.1, 0.3, 0.7}) {
+        SCOPED_TRACE(s);
+        auto got = coverage(split_cells(s, 10, 10, 3, true), s);
+        auto want = half_open_rect(0, 30, 0, 30);
+        EXPECT_EQ(got, want) << describe(got, want);
+    }
+}
+
+TEST(Rasterize, FanAroundALatticePointGivesItOnce) {
+    const double s = 1.5;
+    const Vec3 centre{3, 4.5, 2};
+    for (int n : {3, 5, 6, 8, 11}) {
+        SCOPED_TRACE(n);
+        std::vector<std::array<Vec3, 3>> tris;
+        for (int k = 0; k < n; ++k) {
+            double a0 = 2 * M_PI * k / n + 0.1, a1 = 2 * M_PI * (k + 1) / n + 0.1;
+            double r0 = 2.2 + 0.3 * (k % 3), r1 = 2.2 + 0.3 * ((k + 1) % 3);
+            tris.push_back({centre, centre + Vec3{r0 * std::cos(a0), r0 * std::sin(a0), 0.5},
+                            centre + Vec3{r1 * std::cos(a1), r1 * std::sin(a1), 0.5}});
+        }
+        auto got = coverage(tris, s);
+        EXPECT_EQ((got[{2, 3}]), 1) << "the centre";
+        for (const auto& [k, c] : got) EXPECT_EQ(c, 1) << "at " << k.first << "," << k.second;
+    }
+}
+
+TEST(Rasterize, FanWithSpokesAlongLatticeLines) {
+    // Spokes to the 8 lattice neighbours: every edge runs through lattice points.
+    const double s = 1.5;
+    auto L = [&](long i, long j) { return Vec3{double(i) * s, double(j) * s, 1}; };
+    const long ring[8][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}};
+    std::vector<std::array<Vec3, 3>> tris;
+    for (int k = 0; k < 8; ++k) {
+        const long* p = ring[k];
+        const long* q = ring[(k + 1) % 8];
+        tris.push_back({L(0, 0), L(2 * p[0], 2 * p[1]), L(2 * q[0], 2 * q[1])});
+    }
+    auto got = coverage(tris, s);
+    auto want = half_open_rect(-2, 2, -2, 2);
+    EXPECT_EQ(got, want) << describe(got, want);
+}
+
+TEST(Rasterize, SharedEdgesThroughOddPointsAreConsistent) {
+    // A strip of thin triangles whose shared edges pass through lattice points at odd slopes.
+    const double s = 0.5;
+    std::vector<std::array<Vec3, 3>> tris;
+    for (int k = 0; k < 12; ++k) {
+        Vec3 a{k * 1.0, 0, 1}, b{k * 1.0 + 1.0, 0, 1}, c{k * 1.0 + 3.0, 6, 2}, d{k * 1.0 + 2.0, 6, 2};
+        tris.push_back({a, b, d});
+        tris.push_back({b, c, d});
+    }
+    auto got = coverage(tris, s);
+    for (const auto& [k, c] : got) EXPECT_EQ(c, 1) << "double at " << k.first << "," << k.second;
+    // A parallelogram strip 12 wide at every height: 24 lattice columns per lattice row.
+    std::map<long, int> per_row;
+    for (const auto& [k, c] : got) ++per_row[k.second];
+    for (long j = 0; j < 12; ++j) EXPECT_EQ(per_row[j], 24) << "row " << j;
+}
+
+TEST(Rasterize, ZIsTakenFromTheTrianglePlane) {
+    std::vector<Vec3> pts;
+    rasterize_triangle({0, 0, 1}, {6, 0, 4}, {0, 6, 7}, 1.5, pts);  // z = 1 + x/2 + y
+    ASSERT_FALSE(pts.empty());
+    for (const auto& p : pts) EXPECT_NEAR(p.z, 1 + p.x / 2 + p.y, 1e-12);
+}
+
+TEST(Rasterize, VerticalTriangleHasNoFootprint) {
+    std::vector<Vec3> pts;
+    rasterize_triangle({0, 0, 0}, {3, 0, 0}, {0, 0, 3}, 1.5, pts);
+    EXPECT_TRUE(pts.empty());
+}

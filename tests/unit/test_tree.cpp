@@ -1,0 +1,352 @@
+// tree/: cone merging (algorithm.md section 3) and the grown support tree's invariants.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "overhang/overhang.hpp"
+#include "query/model_query.hpp"
+#include "shapes.hpp"
+#include "support.hpp"
+#include "tree/tree.hpp"
+
+using namespace cs;
+
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+// Height of the highest point of the intersection of the downward cones at a and b above (x, y).
+double cones_top_at(const Vec3& a, const Vec3& b, double tan_c, double x, double y) {
+    Vec3 q{x, y, 0};
+    return std::min(a.z - horizontal_distance(a, q) / tan_c, b.z - horizontal_distance(b, q) / tan_c);
+}
+
+void expect_on_cone(const Vec3& apex, const Vec3& s, double tan_c) {
+    EXPECT_LE(s.z, apex.z);
+    EXPECT_NEAR(horizontal_distance(apex, s), (apex.z - s.z) * tan_c, 1e-9);
+}
+
+struct Grown {
+    Mesh model;
+    std::unique_ptr<ModelQuery> query;
+    OverhangSamples samples;
+    SupportTree tree;
+};
+
+// The placed model must outlive its ModelQuery: both live in the returned object.
+std::unique_ptr<Grown> grow(const Mesh& model, const Params& p) {
+    auto g = std::make_unique<Grown>();
+    g->model = model;
+    g->query = std::make_unique<ModelQuery>(g->model);
+    g->samples = sample_overhangs(g->model, {p.critical_angle, p.sampling_distance, p.layer_height});
+    g->tree = grow_tree(*g->query, g->samples.samples, p);
+    return g;
+}
+
+// Invariants every grown tree keeps (algorithm.md section 3 (a), (b)).
+void expect_valid_tree(const Grown& g, const Params& p) {
+    const auto& t = g.tree;
+    ASSERT_FALSE(t.struts.empty());
+    std::vector<int> out(t.nodes.size(), 0), in(t.nodes.size(), 0);
+    for (size_t e = 0; e < t.struts.size(); ++e) {
+        const auto& s = t.struts[e];
+        ASSERT_GE(s.top, 0);
+        ASSERT_GE(s.bottom, 0);
+        ASSERT_LT(static_cast<size_t>(s.top), t.nodes.size());
+        ASSERT_LT(static_cast<size_t>(s.bottom), t.nodes.size());
+        const Vec3 &a = t.nodes[s.top].p, &b = t.nodes[s.bottom].p;
+        SCOPED_TRACE("strut " + std::to_string(e) + " from (" + std::to_string(a.x) + "," + std::to_string(a.y) + "," +
+                     std::to_string(a.z) + ") to (" + std::to_string(b.x) + "," + std::to_string(b.y) + "," +
+                     std::to_string(b.z) + ")");
+        EXPECT_GT(a.z, b.z) << "strut does not go down";
+        EXPECT_LE(angle_from_vertical_deg(a, b), p.critical_angle + 1e-6);
+        EXPECT_FALSE(g.query->segment_hits(a, b)) << "strut axis passes through the model";
+        EXPECT_GE(b.z, -1e-12);
+        ++out[s.top];
+        ++in[s.bottom];
+    }
+    std::set<std::tuple<double, double, double>> sample_points;
+    for (const auto& s : g.samples.samples) sample_points.insert({s.p.x, s.p.y, s.p.z});
+    std::set<std::tuple<double, double, double>> leaf_contacts;
+    for (size_t v = 0; v < t.nodes.size(); ++v) {
+        const Node& n = t.nodes[v];
+        SCOPED_TRACE("node " + std::to_string(v));
+        EXPECT_LE(out[v], 1) << "a node with two struts below it";
+        switch (n.kind) {
+            case NodeKind::Leaf:
+                EXPECT_TRUE(sample_points.count({n.contact.x, n.contact.y, n.contact.z})) << "leaf without a sample";
+                EXPECT_TRUE(leaf_contacts.insert({n.contact.x, n.contact.y, n.contact.z}).second) << "two leaves, one sample";
+                EXPECT_EQ(out[v], 1);
+                EXPECT_LT(n.p.z, n.contact.z);
+                EXPECT_LT(n.tip.z, n.contact.z);
+                EXPECT_GE(n.tip.z, n.p.z);
+                break;
+            case NodeKind::Merge:
+                EXPECT_GE(in[v], 2);
+                EXPECT_EQ(out[v], 1);
+                break;
+            case NodeKind::Chain:
+                EXPECT_GE(in[v], 1);
+                EXPECT_EQ(out[v], 1);
+                break;
+            case NodeKind::Bed:
+                EXPECT_NEAR(n.p.z, 0, 1e-9);
+                EXPECT_EQ(out[v], 0);
+                EXPECT_GE(in[v], 1);
+                break;
+            case NodeKind::ModelContact:
+                EXPECT_EQ(out[v], 0);
+                EXPECT_GE(in[v], 1);
+                EXPECT_GT(n.p.z, n.contact.z);
+                EXPECT_NEAR(std::sqrt(g.query->squared_distance(n.contact)), 0, 1e-6) << "contact not on the model";
+                break;
+            case NodeKind::Dropped:  // given up: nothing is built from or into it
+                EXPECT_EQ(out[v], 0);
+                EXPECT_EQ(in[v], 0);
+                break;
+        }
+    }
+}
+
+// Every path from a leaf ends on the bed or on the model.
+void expect_every_leaf_reaches_ground(const SupportTree& t) {
+    std::vector<int> down(t.nodes.size(), -1);
+    for (const auto& s : t.struts) down[s.top] = s.bottom;
+    for (size_t v = 0; v < t.nodes.size(); ++v) {
+        if (t.nodes[v].kind != NodeKind::Leaf) continue;
+        int x = static_cast<int>(v);
+        for (size_t guard = 0; down[x] >= 0 && guard <= t.nodes.size(); ++guard) x = down[x];
+        EXPECT_TRUE(t.nodes[x].kind == NodeKind::Bed || t.nodes[x].kind == NodeKind::ModelContact) << "leaf " << v;
+    }
+}
+
+void expect_same_tree(const SupportTree& a, const SupportTree& b) {
+    ASSERT_EQ(a.nodes.size(), b.nodes.size());
+    ASSERT_EQ(a.struts.size(), b.struts.size());
+    for (size_t i = 0; i < a.nodes.size(); ++i) {
+        EXPECT_EQ(a.nodes[i].p, b.nodes[i].p);
+        EXPECT_EQ(a.nodes[i].kind, b.nodes[i].kind);
+        EXPECT_EQ(a.nodes[i].contact, b.nodes[i].contact);
+    }
+    for (size_t i = 0; i < a.struts.size(); ++i) {
+        EXPECT_EQ(a.struts[i].top, b.struts[i].top);
+        EXPECT_EQ(a.struts[i].bottom, b.struts[i].bottom);
+    }
+    EXPECT_EQ(a.pillars.size(), b.pillars.size());
+}
+
+size_t count_kind(const SupportTree& t, NodeKind k) {
+    size_t n = 0;
+    for (const auto& node : t.nodes) n += node.kind == k;
+    return n;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- merge_point
+
+TEST(MergePoint, BInsideAsConeReturnsB) {
+    const double t = std::tan(50 * kDeg);
+    Vec3 a{0, 0, 10}, b{1, 2, 5};
+    EXPECT_EQ(merge_point(a, b, t), b);
+    // Straight below, and exactly on the cone's boundary.
+    EXPECT_EQ(merge_point(a, Vec3{0, 0, 3}, t), (Vec3{0, 0, 3}));
+    Vec3 edge{5 * t, 0, 5};
+    EXPECT_EQ(merge_point(a, edge, t), edge);
+}
+
+TEST(MergePoint, OutsideConeMeetsOnTheVerticalPlaneAtTheFormulaHeight) {
+    // Exact numbers with tan = 1: z_s = (10 + 8 - 10) / 2 = 4, 6 mm from a towards b.
+    Vec3 s = merge_point({0, 0, 10}, {10, 0, 8}, 1.0);
+    EXPECT_NEAR(s.x, 6, 1e-12);
+    EXPECT_NEAR(s.y, 0, 1e-12);
+    EXPECT_NEAR(s.z, 4, 1e-12);
+    // Equal heights: half-way between, D / (2 t) below.
+    Vec3 m = merge_point({0, 0, 10}, {4, 0, 10}, 1.0);
+    EXPECT_NEAR(m.x, 2, 1e-12);
+    EXPECT_NEAR(m.z, 8, 1e-12);
+}
+
+TEST(MergePoint, GeneralCaseIsTheHighestPointOfBothCones) {
+    const double t = std::tan(50 * kDeg);
+    const Vec3 cases[][2] = {{{1, 2, 20}, {9, -4, 17}}, {{-3, 5, 8}, {4, 9, 8}}, {{0, 0, 30}, {-40, -10, 5}},
+                             {{2.5, 2.5, 12}, {2.5, 9.5, 11.9}}};
+    for (const auto& c : cases) {
+        const Vec3 a = c[0], b = c[1];
+        const double D = horizontal_distance(a, b);
+        ASSERT_GT(D, (a.z - b.z) * t) << "case must be outside the cone";
+        Vec3 s = merge_point(a, b, t);
+        // Height from algorithm.md: z_s = (z1 + z2 - D/t) / 2.
+        EXPECT_NEAR(s.z, (a.z + b.z - D / t) / 2, 1e-9);
+        // On the vertical plane through both apexes, between them.
+        Vec3 ab{b.x - a.x, b.y - a.y, 0}, as{s.x - a.x, s.y - a.y, 0};
+        EXPECT_NEAR(cross(ab, as).z, 0, 1e-9);
+        EXPECT_GE(dot(ab, as), 0);
+        EXPECT_LE(horizontal_distance(a, s), D + 1e-9);
+        // On the boundary of both cones.
+        expect_on_cone(a, s, t);
+        expect_on_cone(b, s, t);
+        // No point in both cones is higher (brute force over a fine XY grid around the apexes).
+        double best = -INFINITY;
+        for (double x = std::min(a.x, b.x) - 2; x <= std::max(a.x, b.x) + 2; x += 0.05)
+            for (double y = std::min(a.y, b.y) - 2; y <= std::max(a.y, b.y) + 2; y += 0.05)
+                best = std::max(best, cones_top_at(a, b, t, x, y));
+        EXPECT_LE(best, s.z + 1e-9);
+        EXPECT_GE(best, s.z - 0.1);
+    }
+}
+
+TEST(MergePoint, StrutsToTheMergePointAreWithinTheCriticalAngle) {
+    const double angle = 50, t = std::tan(angle * kDeg);
+    Vec3 a{0, 0, 10}, b{7, 3, 9};
+    Vec3 s = merge_point(a, b, t);
+    EXPECT_NEAR(angle_from_vertical_deg(a, s), angle, 1e-9);
+    EXPECT_NEAR(angle_from_vertical_deg(b, s), angle, 1e-9);
+}
+
+// ---------------------------------------------------------------- helpers of the sweep
+
+TEST(TreeHelpers, TouchingSpaceAndContactTolerance) {
+    Params p;
+    EXPECT_NEAR(touching_space(p), 2 * 0.2 + 0.2, 1e-12);
+    EXPECT_GT(contact_tolerance(p), p.gap);
+}
+
+TEST(TreeHelpers, StrutIsClearAwayFromTheModelNotThroughIt) {
+    Mesh m = cs::test::box({0, 0, 0}, {10, 10, 10});
+    ModelQuery q(m);
+    EXPECT_TRUE(strut_is_clear(q, {20, 5, 15}, 1, {20, 5, 0}, 1, 0.3));
+    EXPECT_FALSE(strut_is_clear(q, {5, 5, 15}, 1, {5, 5, 5}, 1, 0.3));       // axis into the box
+    EXPECT_FALSE(strut_is_clear(q, {10.6, 5, 15}, 1, {10.6, 5, 0}, 1, 0.3));  // edges within the clearance
+    EXPECT_TRUE(strut_is_clear(q, {11.5, 5, 15}, 1, {11.5, 5, 0}, 1, 0.3));
+}
+
+TEST(TreeHelpers, FirstHitInConeSeesTheModelBelow) {
+    Mesh m = cs::test::box({0, 0, 0}, {10, 10, 5});
+    ModelQuery q(m);
+    auto hit = first_hit_in_cone(q, {5, 5, 12}, 50);
+    ASSERT_TRUE(hit.has_value());
+    EXPECT_NEAR(hit->z, 5, 1e-9);
+    EXPECT_FALSE(first_hit_in_cone(q, {40, 40, 12}, 50).has_value());  // only the bed
+}
+
+// ---------------------------------------------------------------- grow_tree
+
+TEST(GrowTree, TShapeKeepsEveryInvariant) {
+    Params p;
+    auto g = grow(cs::test::t_shape(), p);
+    ASSERT_GT(g->samples.samples.size(), 50u);
+    expect_valid_tree(*g, p);
+    expect_every_leaf_reaches_ground(g->tree);
+    EXPECT_GT(g->tree.stats.merges, 0u);
+    // Under the plate there is only the bed: no model contacts.
+    EXPECT_EQ(count_kind(g->tree, NodeKind::ModelContact), 0u);
+    // Samples over the stem do not exist (the underside there is no surface); every sample is
+    // either a leaf, a pillar, touching, internal or dropped.
+    const auto& st = g->tree.stats;
+    EXPECT_EQ(count_kind(g->tree, NodeKind::Leaf) + count_kind(g->tree, NodeKind::Dropped) + st.pillars + st.touching +
+                  st.internal,
+              g->samples.samples.size());
+    EXPECT_EQ(st.dropped, 0u);
+}
+
+TEST(GrowTree, BridgeKeepsEveryInvariant) {
+    Params p;
+    auto g = grow(cs::test::bridge_shape(), p);
+    ASSERT_GT(g->samples.samples.size(), 20u);
+    expect_valid_tree(*g, p);
+    expect_every_leaf_reaches_ground(g->tree);
+    EXPECT_EQ(g->tree.stats.dropped, 0u);
+}
+
+TEST(GrowTree, CantileverKeepsEveryInvariant) {
+    Params p;
+    auto g = grow(cs::test::cantilever_over_box(), p);
+    expect_valid_tree(*g, p);
+    expect_every_leaf_reaches_ground(g->tree);
+}
+
+TEST(GrowTree, OtherCriticalAnglesKeepTheirAngle) {
+    for (double angle : {30.0, 60.0}) {
+        SCOPED_TRACE(angle);
+        Params p;
+        p.critical_angle = angle;
+        auto g = grow(cs::test::bridge_shape(), p);
+        expect_valid_tree(*g, p);
+    }
+}
+
+TEST(GrowTree, IsDeterministic) {
+    Params p;
+    for (const Mesh& m : {cs::test::t_shape(), cs::test::cantilever_over_box()}) {
+        auto a = grow(m, p), b = grow(m, p);
+        expect_same_tree(a->tree, b->tree);
+        EXPECT_EQ(a->tree.total_length(), b->tree.total_length());
+    }
+}
+
+TEST(GrowTree, TreeIsShorterThanColumns) {
+    Params tree, columns;
+    columns.strategy = "columns";
+    for (const Mesh& m : {cs::test::t_shape(), cs::test::bridge_shape()}) {
+        auto t = grow(m, tree), c = grow(m, columns);
+        EXPECT_GT(c->tree.total_length(), 0);
+        EXPECT_LT(t->tree.total_length(), c->tree.total_length());
+        // Columns: no merges, every strut vertical.
+        EXPECT_EQ(c->tree.stats.merges, 0u);
+        for (const auto& s : c->tree.struts)
+            EXPECT_NEAR(angle_from_vertical_deg(c->tree.nodes[s.top].p, c->tree.nodes[s.bottom].p), 0, 1e-9);
+    }
+}
+
+TEST(GrowTree, SupportsOnModelLandOnTheLowBox) {
+    Params p;
+    auto g = grow(cs::test::cantilever_over_box(), p);
+    EXPECT_GT(count_kind(g->tree, NodeKind::ModelContact), 0u) << "the low box is right under the cantilever";
+    EXPECT_EQ(g->tree.stats.model_contacts, count_kind(g->tree, NodeKind::ModelContact));
+}
+
+TEST(GrowTree, BuildplateOnlyNeverLandsOnTheModel) {
+    Params p;
+    p.supports_on_model = false;
+    auto g = grow(cs::test::cantilever_over_box(), p);
+    expect_valid_tree(*g, p);
+    expect_every_leaf_reaches_ground(g->tree);
+    EXPECT_EQ(count_kind(g->tree, NodeKind::ModelContact), 0u);
+    EXPECT_EQ(g->tree.stats.model_contacts, 0u);
+    EXPECT_EQ(g->tree.stats.dropped, 0u) << "samples given up although the bed is reachable around the box";
+    EXPECT_EQ(g->tree.stats.dropped_branches, 0u);
+    EXPECT_GT(count_kind(g->tree, NodeKind::Bed), 0u);
+    for (const auto& pl : g->tree.pillars) EXPECT_FALSE(pl.on_model);
+}
+
+TEST(GrowTree, NoSamplesNoTree) {
+    Params p;
+    Mesh m = cs::test::box({0, 0, 0}, {5, 5, 5});
+    ModelQuery q(m);
+    SupportTree t = grow_tree(q, {}, p);
+    EXPECT_TRUE(t.nodes.empty());
+    EXPECT_TRUE(t.struts.empty());
+    EXPECT_EQ(t.total_length(), 0);
+}
+
+TEST(GrowTree, LowOverhangsBecomePillarsOrRest) {
+    // A plate 1.5 mm above the bed (less than two tips): pillars, not trees; 0.5 mm: printed on the bed.
+    Params p;
+    Mesh m = cs::test::box({-10, -2, 0}, {-8, 2, 3});  // a post, so the plate is one model
+    append(m, cs::test::box({-8, -2, 1.5}, {0, 2, 3}));
+    auto g = grow(m, p);
+    EXPECT_GT(g->tree.pillars.size(), 0u);
+    EXPECT_TRUE(g->tree.struts.empty());
+    for (const auto& pl : g->tree.pillars) {
+        EXPECT_NEAR(pl.top.z, 1.5 - p.gap, 1e-9);
+        EXPECT_EQ(pl.bottom.z, 0);
+    }
+    Mesh low = cs::test::box({0, 0, 0.5}, {5, 5, 2});
+    auto h = grow(low, p);
+    EXPECT_TRUE(h->tree.pillars.empty());
+    EXPECT_TRUE(h->tree.struts.empty());
+    EXPECT_EQ(h->tree.stats.touching, h->samples.samples.size());
+}
