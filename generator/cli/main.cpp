@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
     std::string input, out_dir, orient = "auto";
     double scale = 1;
     std::optional<double> fit;
-    bool do_render = false, quiet = false, verbose = false, as_json = false, no_si = false, no_timings = false;
+    bool do_render = false, do_preview = false, quiet = false, verbose = false, as_json = false, no_si = false, no_timings = false;
     ParamFlags gen;
     app.add_option("input", input, "Mesh file: .stl (ASCII or binary), .obj, .off, .ply");
     app.add_option("--out", out_dir, "Output directory (default out/<name>)");
@@ -120,6 +120,7 @@ int main(int argc, char** argv) {
     app.add_option("--fit", fit, "Then scale so the largest side is this many mm");
     app.add_option("--orient", orient, "auto (least support), keep, or RX,RY,RZ in degrees")->capture_default_str();
     app.add_flag("--render", do_render, "Also render <name>.scad with OpenSCAD into <name>.union.stl");
+    app.add_flag("--preview", do_preview, "Also draw <name>-front/back/side.png (model grey, supports orange)");
     app.add_flag("--no-self-intersection-check", no_si, "Skip counting self-intersections of the input");
     app.add_flag("--no-timings", no_timings, "Leave stage times out of the report: byte-identical reports run to run");
     app.add_flag("-q,--quiet", quiet, "Print errors only");
@@ -223,6 +224,15 @@ int main(int argc, char** argv) {
                 return kExitRenderFailed;
             }
             if (!quiet && !as_json) std::printf("  rendered    %s in %.1f s\n", rr.output.c_str(), rr.seconds);
+        }
+        if (do_preview) {
+            std::string error;
+            auto pngs = render_previews(dir + "/" + r.name + ".scad", dir + "/" + r.name, error);
+            if (!error.empty()) {
+                print_error(error);
+                return kExitRenderFailed;
+            }
+            if (!quiet && !as_json) std::printf("  pictures    %s-front.png, -back.png, -side.png\n", (dir + "/" + r.name).c_str());
         }
         return kExitOk;
     } catch (const InputError& e) {

@@ -12,6 +12,7 @@
 #include "core/errors.hpp"
 #include "mesh/mesh_io.hpp"
 #include "output/scad.hpp"
+#include "output/threemf.hpp"
 
 namespace cs {
 namespace {
@@ -156,6 +157,7 @@ std::vector<OutputFile> output_files(const Result& r, const Job& job, const std:
     files.push_back({r.name + ".supported.stl", encode_stl(supported, "clever-support: model + supports")});
     files.push_back({r.name + ".supports.stl", encode_stl(r.supports.mesh, "clever-support: supports")});
     files.push_back({r.name + ".model.stl", encode_stl(r.model, "clever-support: placed model")});
+    files.push_back({r.name + ".3mf", encode_3mf({{r.name, r.model}, {r.name + " supports", r.supports.mesh}})});
     files.push_back({r.name + ".report.json", report_json(r, job)});
     ScadMeta meta{version, job.input, r.input_sha256, r.name + ".model.stl"};
     files.push_back({r.name + ".scad", emit_scad(r.supports.sized, job.params, meta)});

@@ -2,6 +2,7 @@
 //   <name>.supported.stl  model + support solids (each closed and outward-facing)
 //   <name>.supports.stl   the support solids alone
 //   <name>.model.stl      the placed (scaled, rotated, on-bed) model
+//   <name>.3mf            model and supports as two objects of one build (for slicers)
 //   <name>.report.json    parameters, counts, lengths, volumes, the columns baseline, timings
 //   <name>.scad           parametric OpenSCAD (see output/scad.hpp) + clever_support.scad beside it
 // All files are written to temporaries first and renamed into place only when every one of them

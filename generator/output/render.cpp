@@ -165,4 +165,48 @@ RenderResult render_scad(const RenderOptions& o) {
     return r;
 }
 
+std::vector<std::string> render_previews(const std::string& scad, const std::string& stem, std::string& error) {
+    std::vector<std::string> written;
+    std::string native = which("openscad");
+    if (native.empty()) {
+        error = "pictures need a native openscad (Debian package openscad): run scripts/install-deps.sh";
+        return written;
+    }
+    std::vector<std::string> prefix;
+    if (!std::getenv("DISPLAY")) {
+        std::string xvfb = which("xvfb-run");
+        if (xvfb.empty()) {
+            error = "pictures need a display or xvfb-run (Debian package xvfb): run scripts/install-deps.sh";
+            return written;
+        }
+        prefix = {xvfb, "-a"};
+    }
+    // Gimbal camera: rotations about x, y, z (degrees); --viewall frames the whole print.
+    const std::pair<const char*, const char*> views[] = {
+        {"front", "0,0,0,62,0,25,0"}, {"back", "0,0,0,62,0,205,0"}, {"side", "0,0,0,80,0,115,0"}};
+    for (const auto& [name, camera] : views) {
+        std::string out = stem + "-" + name + ".png";
+        std::string tmp = stem + "-" + name + ".partial.png";
+        std::vector<std::string> argv = prefix;
+        for (const std::string& a : {native, std::string("-o"), tmp, std::string("--imgsize=1000,760"),
+                                     std::string("--camera=") + camera, std::string("--viewall"), std::string("--autocenter"),
+                                     std::string("--colorscheme=Tomorrow"), scad})
+            argv.push_back(a);
+        std::string log;
+        int code = run(argv, log);
+        if (code != 0 || !is_file(tmp) || log.find("ERROR:") != std::string::npos) {
+            unlink(tmp.c_str());
+            error = "OpenSCAD could not draw " + scad + " (exit code " + std::to_string(code) + ")";
+            return written;
+        }
+        if (rename(tmp.c_str(), out.c_str()) != 0) {
+            unlink(tmp.c_str());
+            error = out + ": cannot write: " + std::strerror(errno);
+            return written;
+        }
+        written.push_back(out);
+    }
+    return written;
+}
+
 }  // namespace cs

@@ -36,4 +36,9 @@ std::vector<std::string> find_openscad(const std::string& forced = "");
 
 RenderResult render_scad(const RenderOptions& o);
 
+// Pictures of a generated .scad (model grey, supports orange) from three viewpoints, written as
+// <stem>-front.png, <stem>-back.png, <stem>-side.png. Needs a native openscad (the wasm build has
+// no OpenGL) and, without a display, xvfb-run. Returns the files written, or sets `error`.
+std::vector<std::string> render_previews(const std::string& scad, const std::string& stem, std::string& error);
+
 }  // namespace cs

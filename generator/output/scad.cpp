@@ -145,8 +145,8 @@ std::string emit_scad(const SizedTree& sized, const Params& p, const ScadMeta& m
 
     s += "include <clever_support.scad>\n\n";
     s += "union() {\n";
-    s += "    if (show_model) import(cs_model_file, convexity = 10);\n";
-    s += "    if (show_supports)\n";
+    s += "    if (show_model) color(\"lightgray\") import(cs_model_file, convexity = 10);\n";
+    s += "    if (show_supports) color(\"darkorange\")\n";
     s += "        cs_tree(cs_tree_record, k, d_min, d_max, strength_length, wall, tip_length, tip_diameter, feet,\n";
     s += "                foot_height, foot_extra);\n";
     s += "}\n";

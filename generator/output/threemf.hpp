@@ -1,0 +1,23 @@
+// 3MF (3D Manufacturing Format) output: the model and its supports as separate objects of one
+// build, the way slicers (PrusaSlicer, Cura) open a multi-part print. A 3MF file is a ZIP package
+// of XML parts; ours is written uncompressed ("stored"), which every ZIP reader accepts.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/geometry.hpp"
+
+namespace cs {
+
+struct NamedMesh {
+    std::string name;
+    Mesh mesh;  // triangle soup or indexed: identical vertices are shared in the output
+};
+
+std::string encode_3mf(const std::vector<NamedMesh>& objects);
+
+// A ZIP archive of the given (name, content) entries, stored without compression.
+std::string encode_zip(const std::vector<std::pair<std::string, std::string>>& entries);
+
+}  // namespace cs
