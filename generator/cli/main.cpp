@@ -3,6 +3,9 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <fmt/format.h>
 #include <iostream>
 #include <optional>
@@ -31,8 +34,44 @@ struct ParamFlags {
     bool buildplate_only = false;
     std::optional<std::string> strategy;
 
+    bool preset_given = false;
+
+    // The config file's keys are the flag names without dashes' leading "--" (e.g. "critical-angle").
+    void apply_config(const nlohmann::json& cfg, Params& p) const {
+        const std::map<std::string, double Params::*> numbers = {
+            {"critical-angle", &Params::critical_angle}, {"layer-height", &Params::layer_height},
+            {"line-width", &Params::line_width},         {"wall", &Params::wall_thickness},
+            {"sampling", &Params::sampling_distance},    {"tip-length", &Params::tip_length},
+            {"tip-diameter", &Params::tip_diameter},     {"gap", &Params::gap},
+            {"k", &Params::k},                           {"d-min", &Params::d_min},
+            {"d-max", &Params::d_max},                   {"strength-length", &Params::strength_length},
+            {"foot-height", &Params::foot_height},       {"foot-extra", &Params::foot_extra},
+            {"clearance", &Params::model_clearance}};
+        for (const auto& [key, value] : cfg.items()) {
+            auto where = "--config " + config + ": \"" + key + "\"";
+            if (key == "preset" || key == "description") continue;
+            if (auto it = numbers.find(key); it != numbers.end()) {
+                if (!value.is_number()) throw ParameterError(where + " must be a number");
+                p.*(it->second) = value.get<double>();
+            } else if (key == "feet" || key == "buildplate-only") {
+                if (!value.is_boolean()) throw ParameterError(where + " must be true or false");
+                if (key == "feet") p.feet = value.get<bool>();
+                else p.supports_on_model = !value.get<bool>();
+            } else if (key == "strategy") {
+                if (!value.is_string()) throw ParameterError(where + " must be \"tree\" or \"columns\"");
+                p.strategy = value.get<std::string>();
+            } else {
+                throw ParameterError(where + " is not a parameter (use the flag names, e.g. \"critical-angle\")");
+            }
+        }
+        p.preset = cfg.value("preset", p.preset) + (config.empty() ? "" : " + " + config);
+    }
+
     void add_to(CLI::App& app) {
-        app.add_option("--preset", preset, "Printer preset (see `clever-support presets`)")->capture_default_str();
+        app.add_option("--preset", preset, "Printer preset (see `clever-support presets`)")
+            ->capture_default_str()
+            ->each([this](const std::string&) { preset_given = true; });
+        app.add_option("--config", config, "A JSON file with your own preset: {\"preset\": ..., \"sampling\": 2, ...}");
         auto g = "Parameters (override the preset)";
         app.add_option("--critical-angle", critical_angle, "Steepest printable overhang, degrees from vertical")->group(g);
         app.add_option("--layer-height", layer_height, "Layer height, mm")->group(g);
@@ -54,8 +93,25 @@ struct ParamFlags {
         app.add_option("--strategy", strategy, "tree (default) or columns (the vertical-columns baseline)")->group(g);
     }
 
+    std::string config;  // a user's own preset: JSON of flag names and values
+
+    // preset, then the config file, then flags: later wins.
     Params resolve() const {
-        Params p = preset_params(preset);
+        std::string base = preset;
+        nlohmann::json cfg;
+        if (!config.empty()) {
+            std::ifstream in(config);
+            if (!in) throw ParameterError("--config " + config + ": cannot read it");
+            try {
+                cfg = nlohmann::json::parse(in);
+            } catch (const std::exception& e) {
+                throw ParameterError("--config " + config + ": not valid JSON (" + std::string(e.what()) + ")");
+            }
+            if (!cfg.is_object()) throw ParameterError("--config " + config + ": expected a JSON object of parameters");
+            if (cfg.contains("preset") && !preset_given) base = cfg["preset"].get<std::string>();
+        }
+        Params p = preset_params(base);
+        if (!cfg.is_null()) apply_config(cfg, p);
         auto set = [](double& dst, const std::optional<double>& v) { if (v) dst = *v; };
         set(p.critical_angle, critical_angle);
         set(p.layer_height, layer_height);
@@ -90,6 +146,7 @@ int cmd_presets() {
                     "k %g, d %g..%g mm\n",
                     "", p.critical_angle, p.layer_height, p.wall_thickness, p.sampling_distance, p.tip_length,
                     p.tip_diameter, p.gap, p.k, p.d_min, p.d_max);
+        std::printf("%-16s sources: %s\n\n", "", pr.sources.c_str());
     }
     return kExitOk;
 }
@@ -152,7 +209,8 @@ int main(int argc, char** argv) {
     render->add_option("--openscad", ropt.openscad, "OpenSCAD command to use");
     render->add_option("--export-format", ropt.format, "binstl, asciistl or png")->capture_default_str();
 
-    auto* list = app.add_subcommand("presets", "List the printer presets.");
+    auto* list = app.add_subcommand("presets", "List the printer presets, their values and where those come from.\n"
+                                               "Your own: --config my.json with {\"preset\": \"generic-0.4\", \"sampling\": 2}");
 
     try {
         app.parse(argc, argv);
@@ -203,9 +261,13 @@ int main(int argc, char** argv) {
         job.self_intersection_check = !no_si;
         job.timings = !no_timings;
         job.params = gen.resolve();
+        // Stages in order; a terminal shows how far the run is, a pipe or file gets nothing.
+        const int total_stages = 8;
+        int stage_no = 0;
         auto progress = [&](const std::string& stage) {
-            if (verbose) std::fprintf(stderr, "  %s...\n", stage.c_str());
-            else if (!quiet && isatty(2)) std::fprintf(stderr, "\r\033[K  %s...", stage.c_str());
+            int pct = 100 * stage_no++ / total_stages;
+            if (verbose) std::fprintf(stderr, "  [%3d%%] %s...\n", pct, stage.c_str());
+            else if (!quiet && isatty(2)) std::fprintf(stderr, "\r\033[K  [%3d%%] %s...", pct, stage.c_str());
         };
         Result r = run_job(job, progress);
         if (!quiet && !verbose && isatty(2)) std::fprintf(stderr, "\r\033[K");

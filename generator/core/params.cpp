@@ -38,7 +38,10 @@ const std::vector<Preset>& presets() {
                      "Any current FDM printer, 0.4 mm nozzle, PLA: 50 deg overhangs, 0.2 mm layers, 0.5 mm N walls "
                      "(0.4 mm walls vanish in slicers), 1.5 mm sampling (PLA bridges 1.5 mm gaps cleanly), "
                      "0.8 mm tips",
-                     g});
+                     g,
+                     "angle: the benchmark slicer profile (Cura/Prusa support angle 50); walls: slicer notes pitfall 6 "
+                     "(0.4 mm walls kept 9-16% in CuraEngine, 0.5 mm kept all); tips: 0.5 mm rods vanish when sliced, "
+                     "0.8 mm is Cura's tree-support tip; k, tip length: the paper"});
 
         Params r = g;
         r.preset = "replicator2-pla";
@@ -51,7 +54,9 @@ const std::vector<Preset>& presets() {
         r.sampling_distance = 0.25;  // paper Sec. 4
         r.d_min = 0.5;           // paper's tested diameters 0.5 .. 1.5
         r.d_max = 4.0;
-        v.push_back({"replicator2-pla", "The paper's printer: MakerBot Replicator 2, PLA (Vanek et al. 2014)", r});
+        v.push_back({"replicator2-pla", "The paper's printer: MakerBot Replicator 2, PLA (Vanek et al. 2014)", r,
+                     "critical angle, layers, k, 1 mm tips, 0.25 mm sampling: the paper (Sec. 4, 6, 7); d_min 0.5: the "
+                     "paper's thinnest tested strut; walls 0.5 instead of 0.4 so slicers print them"});
 
         Params mk4 = g;
         mk4.preset = "prusa-mk4-pla";
@@ -60,20 +65,25 @@ const std::vector<Preset>& presets() {
         mk4.line_width = 0.45;    // PrusaSlicer MK4 0.4 nozzle default extrusion width
         mk4.wall_thickness = 0.5;
         mk4.sampling_distance = 2.0;
-        v.push_back({"prusa-mk4-pla", "Prusa MK3S/MK4, 0.4 mm nozzle, PLA (good part cooling: 55 deg overhangs)", mk4});
+        v.push_back({"prusa-mk4-pla", "Prusa MK3S/MK4, 0.4 mm nozzle, PLA (good part cooling: 55 deg overhangs)", mk4,
+                     "angle: PrusaSlicer's PLA profiles support from 55 deg; line width: its 0.45 mm default; sampling "
+                     "2 mm: PLA with strong cooling bridges 2 mm cleanly"});
 
         Params petg = mk4;
         petg.preset = "prusa-mk4-petg";
         petg.critical_angle = 45;  // PETG sags more and runs with less fan
         petg.gap = 0.25;           // PETG sticks to itself: PrusaSlicer's PETG profiles widen the z gap
         petg.sampling_distance = 1.5;
-        v.push_back({"prusa-mk4-petg", "Prusa MK3S/MK4, 0.4 mm nozzle, PETG (less cooling, stickier)", petg});
+        v.push_back({"prusa-mk4-petg", "Prusa MK3S/MK4, 0.4 mm nozzle, PETG (less cooling, stickier)", petg,
+                     "angle 45: PETG runs with less fan and sags sooner; gap 0.25: PrusaSlicer's PETG profiles widen "
+                     "the support z gap because PETG fuses to itself"});
 
         Params ender = g;
         ender.preset = "ender3-pla";
         ender.critical_angle = 45;  // stock single-sided fan duct: weaker overhangs
         ender.sampling_distance = 1.5;
-        v.push_back({"ender3-pla", "Creality Ender-3 (stock cooling), 0.4 mm nozzle, PLA", ender});
+        v.push_back({"ender3-pla", "Creality Ender-3 (stock cooling), 0.4 mm nozzle, PLA", ender,
+                     "angle 45: the stock single-sided fan duct cools overhangs unevenly; the rest as generic-0.4"});
         return v;
     }();
     return all;

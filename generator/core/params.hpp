@@ -48,6 +48,7 @@ struct Preset {
     std::string name;
     std::string description;
     Params params;
+    std::string sources;  // where the values come from
 };
 
 // All built-in presets; the first is the default.
