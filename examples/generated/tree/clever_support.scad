@@ -1,0 +1,175 @@
+// clever_support.scad: the OpenSCAD side of clever-support .
+//
+// A generated <name>.scad file holds the support tree as DATA (nodes, struts, contacts) and
+// `include`s this library, which holds the GEOMETRY as code: strut widths are computed here from
+// each strut's length and angle and the widths above it, so changing k, d_min, d_max, wall, the
+// tips or the feet in the Customizer (or with `openscad -D k=0.003`) re-sizes the whole tree
+// consistently. This file must parse on OpenSCAD 2021.01 and 2025: no recursion deeper than a
+// handful of calls, no hull(), one polyhedron per solid.
+//
+// Units: millimetres and degrees. +Z is up, the bed is z = 0.
+//
+// Width rules (the same as the C++ generator's struts stage):
+//   eqn1      d = k * l * alpha, clamped to [d_min, d_max]      (paper Eqn 1; alpha from vertical)
+//   strength  d >= sqrt(run_length / (strength_length * f(alpha))), f = 1 up to 30 deg, then -15%
+//             per 20 deg: the paper's Table 1 (1 mm safe to 30 mm, 1.5 mm to 60 mm at 50 deg)
+//   node      leaf: d_min; one strut in: its lower width; several: (sum w^3)^(1/3), at least the widest
+//   strut     upper = clamp(max(node width, strength)), lower = max(upper, eqn1): never narrowing down
+//
+// Modules
+//   cs_prism(bottom, top, w_bottom, w_top, n_profile, wall)
+//       one solid between two horizontal squares centred at `bottom` and `top` (points [x,y,z]),
+//       side widths w_bottom / w_top (mm); filled with the N-profile (three walls `wall` thick)
+//       when n_profile is true, else solid. Struts, tips, feet and pillars are all cs_prism.
+//   cs_strut(a, b, w_a, w_b, wall, min_n)
+//       an N-profile strut from upper point a to lower point b; solid square when narrower than min_n.
+//   cs_tip(bottom_z_point, top, w_bottom, tip_diameter, tip_length)
+//       a detachable tip: straight neck, then a taper over tip_length to tip_diameter at `top`.
+//   cs_contact_tip(bottom, top, tip_diameter, w_top, tip_length)
+//       the same, upside down, where a strut stands on the model.
+//   cs_foot(bed_point, toward, w, foot_height, foot_extra, room, clearance, wall)
+//       a foot on the bed, w + 2*extra wide at z = 0, narrowing to w at foot_height along the strut;
+//       extra = foot_extra unless the model is nearer than that (room: distance to the model).
+//   cs_tree(tree, k, d_min, d_max, strength_length, wall, tip_length, tip_diameter, feet,
+//           foot_height, foot_extra)
+//       the whole support from a generated tree record (see `cs_tree_record` in generated files):
+//       [nodes, kinds, node_in, struts, levels, leaves, contacts, pillars, overlap, clearance]
+//         nodes    [[x,y,z], ...]
+//         kinds    per node: 0 leaf, 1 merge, 2 bend, 3 bed, 4 model contact
+//         node_in  per node: indices of the struts ending there
+//         struts   [[top node, bottom node, run length, run angle, level, room], ...]
+//                  room: on the bed, the distance from the foot to the model (else 0)
+//         levels   number of sizing levels (a strut's level = longest path from a leaf to its top)
+//         leaves   [[node, [x,y,z] tip top, strut leaving the node], ...]
+//         contacts [[node, [x,y,z] tip bottom on the model], ...]
+//         pillars  [[[x,y,z] top, [x,y,z] bottom], ...]  too short for a tree: d_min up to the tip
+//         overlap  how far a strut reaches into the solid below it (mm)
+//         clearance  air kept between supports and the model (mm)
+//   cs_strut_widths(...) returns [[upper, lower], ...] per strut, for inspection with echo().
+
+// ----------------------------------------------------------------------------- width rules
+
+function cs_clamp(x, lo, hi) = min(max(x, lo), hi);
+function cs_angle_factor(a) = max(0.3, 1 - 0.15 * max(0, a - 30) / 20);
+function cs_strength_width(run_length, run_angle, strength_length) =
+    sqrt(max(0, run_length) / (strength_length * cs_angle_factor(run_angle)));
+function cs_eqn1(k, l, alpha, d_min, d_max) = cs_clamp(k * l * alpha, d_min, d_max);
+function cs_cube_sum(ws) = [for (i = 0, s = 0; i <= len(ws); s = i < len(ws) ? s + pow(ws[i], 3) : s, i = i + 1)
+                               if (i == len(ws)) s][0];
+function cs_merged(ws, d_min, d_max) = cs_clamp(max(pow(cs_cube_sum(ws), 1 / 3), max(ws)), d_min, d_max);
+function cs_angle(a, b) = atan2(norm([b[0] - a[0], b[1] - a[1]]), abs(a[2] - b[2]));
+
+function cs_node_width(v, node_in, w, d_min, d_max) =
+    len(node_in[v]) == 0 ? d_min
+    : len(node_in[v]) == 1 ? w[node_in[v][0]][1]
+    : cs_merged([for (e = node_in[v]) w[e][1]], d_min, d_max);
+
+function cs_size_strut(s, nodes, node_in, w, k, d_min, d_max, strength_length) =
+    let(a = nodes[s[0]], b = nodes[s[1]],
+        up = cs_clamp(max(cs_node_width(s[0], node_in, w, d_min, d_max),
+                          cs_strength_width(s[2], s[3], strength_length)), d_min, d_max))
+    [up, max(up, cs_eqn1(k, norm(b - a), cs_angle(a, b), d_min, d_max))];
+
+// Level by level (no recursion): every strut into a node is sized before the node's own strut.
+function cs_strut_widths(nodes, node_in, struts, levels, k, d_min, d_max, strength_length) =
+    len(struts) == 0 ? [] :
+    [for (L = 0, w = [for (s = struts) [d_min, d_min]];
+          L <= levels;
+          w = [for (e = [0 : len(struts) - 1])
+                  struts[e][4] == L ? cs_size_strut(struts[e], nodes, node_in, w, k, d_min, d_max, strength_length)
+                                    : w[e]],
+          L = L + 1)
+        if (L == levels) w][0];
+
+// ----------------------------------------------------------------------------- solids
+
+// The N of the paper's Fig. 10 in a d x d square: left bar, right bar and the diagonal from the
+// top-left to the bottom-right corner, as one polygon of 12 corners (counter-clockwise).
+function cs_n_ring(d, t) = let(a = d / 2, c = t / sqrt(2))
+    [[-a, -a], [-a + t, -a], [-a + t, a - t - c], [a - t, -a + t - c], [a - t, -a], [a, -a],
+     [a, a], [a - t, a], [a - t, -a + t + c], [-a + t, a - t + c], [-a + t, a], [-a, a]];
+cs_n_cap = [[0, 1, 2], [0, 2, 9], [0, 9, 11], [9, 10, 11], [4, 5, 6], [4, 6, 3], [3, 6, 8], [8, 6, 7],
+            [2, 3, 8], [2, 8, 9]];
+function cs_square_ring(d) = let(a = d / 2) [[-a, -a], [a, -a], [a, a], [-a, a]];
+cs_square_cap = [[0, 1, 2], [0, 2, 3]];
+
+module cs_prism(bottom, top, w_bottom, w_top, n_profile, wall) {
+    lo = n_profile ? cs_n_ring(w_bottom, wall) : cs_square_ring(w_bottom);
+    hi = n_profile ? cs_n_ring(w_top, wall) : cs_square_ring(w_top);
+    cap = n_profile ? cs_n_cap : cs_square_cap;
+    n = len(lo);
+    // OpenSCAD wants faces clockwise seen from outside.
+    polyhedron(
+        points = concat([for (q = lo) [bottom[0] + q[0], bottom[1] + q[1], bottom[2]]],
+                        [for (q = hi) [top[0] + q[0], top[1] + q[1], top[2]]]),
+        faces = concat([for (t = cap) [t[0], t[1], t[2]]],
+                       [for (t = cap) [n + t[0], n + t[2], n + t[1]]],
+                       [for (i = [0 : n - 1]) [i, n + (i + 1) % n, (i + 1) % n]],
+                       [for (i = [0 : n - 1]) [i, n + i, n + (i + 1) % n]]),
+        convexity = 4);
+}
+
+module cs_strut(a, b, w_a, w_b, wall, min_n) {
+    cs_prism(b, a, w_b, w_a, min(w_a, w_b) >= min_n, wall);
+}
+
+// A tip from `bottom` (width w_bottom) up to `top` (tip_diameter): a straight neck, then the taper.
+module cs_tip(bottom, top, w_bottom, tip_diameter, tip_length, wall) {
+    z_taper = top[2] - tip_length;
+    if (z_taper <= bottom[2] + 1e-6) {
+        cs_prism(bottom, top, w_bottom, tip_diameter, false, wall);
+    } else {
+        neck_top = [top[0], top[1], z_taper];
+        cs_prism(bottom, neck_top, w_bottom, w_bottom, false, wall);
+        cs_prism(neck_top, top, w_bottom, tip_diameter, false, wall);
+    }
+}
+
+// A tip standing on the model: taper up from `bottom` (tip_diameter) over tip_length, then a neck.
+module cs_contact_tip(bottom, top, tip_diameter, w_top, tip_length, wall) {
+    z_taper = bottom[2] + tip_length;
+    if (z_taper >= top[2] - 1e-6) {
+        cs_prism(bottom, top, tip_diameter, w_top, false, wall);
+    } else {
+        neck_bottom = [bottom[0], bottom[1], z_taper];
+        cs_prism(bottom, neck_bottom, tip_diameter, w_top, false, wall);
+        cs_prism(neck_bottom, top, w_top, w_top, false, wall);
+    }
+}
+
+// Half-way up its strut at most; as wide as the room to the model allows (minus the clearance),
+// and left out when under 0.25 mm would remain.
+function cs_foot_extra(foot_extra, w, room, clearance) = let(e = min(foot_extra, room / sqrt(2) - w / 2 - clearance))
+    e >= 0.25 ? e : 0;
+
+function cs_foot_top(bed_point, toward, foot_height) =
+    bed_point + (toward - bed_point) * min(0.5, foot_height / toward[2]);
+
+module cs_foot(bed_point, toward, w, foot_height, foot_extra, room, clearance, wall) {
+    e = cs_foot_extra(foot_extra, w, room, clearance);
+    if (e > 0) cs_prism(bed_point, cs_foot_top(bed_point, toward, foot_height), w + 2 * e, w, false, wall);
+}
+
+module cs_tree(tree, k, d_min, d_max, strength_length, wall, tip_length, tip_diameter, feet, foot_height,
+               foot_extra) {
+    nodes = tree[0]; kinds = tree[1]; node_in = tree[2]; struts = tree[3]; levels = tree[4];
+    leaves = tree[5]; contacts = tree[6]; pillars = tree[7]; overlap = tree[8]; clearance = tree[9];
+    w = cs_strut_widths(nodes, node_in, struts, levels, k, d_min, d_max, strength_length);
+    for (e = [0 : max(0, len(struts) - 1)]) if (e < len(struts)) {
+        a = nodes[struts[e][0]];
+        b0 = nodes[struts[e][1]];
+        on_bed = kinds[struts[e][1]] == 3;
+        has_foot = on_bed && feet && foot_height > 0 && cs_foot_extra(foot_extra, w[e][1], struts[e][5], clearance) > 0;
+        down = (b0 - a) / norm(b0 - a);
+        // Onto a joint: reach `overlap` into it; onto a foot: stop just inside the foot's top.
+        b = !on_bed ? b0 + down * overlap : has_foot ? cs_foot_top(b0, a, foot_height) + down * overlap : b0;
+        cs_strut(a, b, w[e][0], w[e][1], wall, 3 * wall);
+        if (has_foot) cs_foot(b0, a, w[e][1], foot_height, foot_extra, struts[e][5], clearance, wall);
+    }
+    for (l = leaves) cs_tip(nodes[l[0]] - [0, 0, overlap], l[1], w[l[2]][0], tip_diameter, tip_length, wall);
+    for (c = contacts) {
+        v = c[0];
+        cs_contact_tip(c[1], nodes[v], tip_diameter, w[node_in[v][0]][1], tip_length, wall);
+    }
+    for (p = pillars) cs_prism(p[1], p[0], d_min, tip_diameter, false, wall);
+}
