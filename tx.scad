@@ -1,1 +1,0 @@
-linear_extrude(1) text("hi");

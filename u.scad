@@ -1,1 +1,0 @@
-use <nolib.scad> cube(1);
