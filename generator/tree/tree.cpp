@@ -94,7 +94,12 @@ class Sweep {
 public:
     Sweep(const ModelQuery& model, const Params& p)
         : model_(model), p_(p), tan_c_(std::tan(p.critical_angle * kDeg)), fan_(cone_fan(p.critical_angle)),
-          grid_(std::max(2.0 * p.sampling_distance, 1.0)) {}
+          grid_(std::max(2.0 * p.sampling_distance, 1.0)) {
+        vertical_only_.assign(fan_.size(), 0);
+        vertical_only_[0] = 1;
+        slanted_only_.assign(fan_.size(), 1);
+        slanted_only_[0] = 0;
+    }
 
     SupportTree run(const std::vector<Sample>& samples) {
         hang_leaves(samples);
@@ -249,12 +254,21 @@ private:
         return apex.z > q.z && horizontal_distance(apex, q) <= (apex.z - q.z) * tan_c_ * (1 + 1e-9);
     }
 
-    void collect_contacts(int id, std::vector<Candidate>& out) const {
+    // Model and bed candidates along the fan. With a finite `reach`, slanted rays are first asked
+    // whether the model is within that reach at all (a cheap segment test); the directions passed
+    // over are marked in `skipped` for a second pass should nothing near be clear.
+    void collect_contacts(int id, std::vector<Candidate>& out, double reach, std::vector<char>* skipped,
+                          const std::vector<char>* only = nullptr) const {
         const Vec3& a = t_.nodes[id].p;
         bool slanted = tree() || !p_.supports_on_model;
         for (size_t i = 0; i < fan_.size(); ++i) {
             if (i > 0 && !slanted) break;
+            if (only && !(*only)[i]) continue;
             const Vec3& d = fan_[i];
+            if (i > 0 && std::isfinite(reach) && !model_.segment_hits(a, a + d * reach)) {
+                if (skipped) (*skipped)[i] = 1;
+                continue;
+            }
             auto hit = model_.first_hit(a, d);
             if (hit) {
                 if (!p_.supports_on_model) continue;
@@ -270,6 +284,30 @@ private:
                 out.push_back({len, Target::Bed, -1, a + d * len, {}});
             }
         }
+    }
+
+    static void by_distance(std::vector<Candidate>& c) {
+        std::sort(c.begin(), c.end(), [](const Candidate& x, const Candidate& y) {
+            if (x.dist != y.dist) return x.dist < y.dist;
+            if (x.type != y.type) return x.type < y.type;
+            return x.other < y.other;
+        });
+    }
+
+    // Takes the first candidate whose strut (and what it joins) fits; false when none does.
+    bool take_first_clear(int id, const std::vector<Candidate>& cands) {
+        for (const auto& c : cands) {
+            if (c.type == Target::SteepModel || !clear(id, c)) continue;
+            if (c.type == Target::Merge && (!clear(c.other, c.point) || !can_escape(c.point, merged_estimate(id, c))))
+                continue;
+            // Joining a node widens it: it must still fit through where it is.
+            if (c.type == Target::InCone &&
+                !can_escape(c.point, merged_width(p_, {width_[c.other], bottom_width(id, c.point)})))
+                continue;
+            accept(id, c);
+            return true;
+        }
+        return false;
     }
 
     void collect_merges(int id, double bound, std::vector<Candidate>& out) {
@@ -311,32 +349,29 @@ private:
 
     void support(int id) {
         std::vector<Candidate> cands;
-        collect_contacts(id, cands);
+        collect_contacts(id, cands, INFINITY, nullptr, &vertical_only_);
         // The columns baseline is what plain slicer supports do: straight down to whatever is
         // below, the model or the bed, no questions asked (unless the model is off limits).
         if (!tree() && !cands.empty() && (p_.supports_on_model || cands[0].type == Target::Bed)) {
             accept(id, cands[0]);
             return;
         }
-        double bound = INFINITY;
+        // Nearer than straight down is all that can win: the fan only looks that far at first.
+        double bound = cands.empty() ? INFINITY : cands[0].dist;
+        std::vector<char> skipped(fan_.size(), 0);
+        collect_contacts(id, cands, bound, &skipped, &slanted_only_);
+        bound = INFINITY;
         for (const auto& c : cands) bound = std::min(bound, c.dist);
         if (tree()) collect_merges(id, bound * (1 + 1e-9), cands);
-        std::sort(cands.begin(), cands.end(), [](const Candidate& x, const Candidate& y) {
-            if (x.dist != y.dist) return x.dist < y.dist;
-            if (x.type != y.type) return x.type < y.type;
-            return x.other < y.other;
-        });
-        for (const auto& c : cands) {
-            if (c.type == Target::SteepModel || !clear(id, c)) continue;
-            if (c.type == Target::Merge && (!clear(c.other, c.point) || !can_escape(c.point, merged_estimate(id, c))))
-                continue;
-            // Joining a node widens it: it must still fit through where it is.
-            if (c.type == Target::InCone &&
-                !can_escape(c.point, merged_width(p_, {width_[c.other], bottom_width(id, c.point)})))
-                continue;
-            accept(id, c);
-            return;
-        }
+        by_distance(cands);
+        if (take_first_clear(id, cands)) return;
+        // Nothing near fits: the farther fan (slanted landings beyond the vertical's reach).
+        std::vector<Candidate> far;
+        collect_contacts(id, far, INFINITY, nullptr, &skipped);
+        by_distance(far);
+        if (take_first_clear(id, far)) return;
+        cands.insert(cands.end(), far.begin(), far.end());
+        by_distance(cands);
         if (step_down(id)) return;
         // In a tight spot, give up the extra air before giving up clearance altogether.
         for (const auto& c : cands) {
@@ -456,7 +491,7 @@ private:
             auto hit = model_.first_hit(a, d);
             double margin = 0.5 * width_[id] + p_.model_clearance + p_.d_min;
             double len = hit ? hit->distance - margin / std::max(0.2, -d.z) : a.z / -d.z;
-            for (len = std::min(len, 20.0); len * -d.z > std::max(0.5, best_drop); len *= 0.5) {
+            for (len = std::min(len, 20.0); len * -d.z > std::max(0.5, best_drop); len *= 0.4) {
                 Vec3 to = a + d * len;
                 if (clear(id, to, clearance) && (to.z < 1e-6 || can_escape(to, bottom_width(id, to)))) {
                     best_drop = a.z - to.z, best = to;
@@ -483,6 +518,7 @@ private:
     const Params& p_;
     double tan_c_;
     std::vector<Vec3> fan_;
+    std::vector<char> vertical_only_, slanted_only_;  // masks over fan_
     SupportTree t_;
     std::vector<double> width_;  // estimated width at each node, for clearance
     std::vector<char> active_;
@@ -546,7 +582,9 @@ bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec
     // The edges miss a bump of the model that pokes between them: also keep a ball around the
     // axis, as wide as the strut's square (half-diagonal), free of the model.
     double len = distance(a, b);
-    int steps = std::max(1, static_cast<int>(std::ceil(len / std::clamp(0.5 * std::min(wa, wb), 0.25, 1.0))));
+    // Balls of radius r spaced r apart cover the axis with overlap: no gap for a bump to hide in.
+    double r_min = 0.5 * std::min(wa, wb) * std::sqrt(2.0);
+    int steps = std::max(1, static_cast<int>(std::ceil(len / std::clamp(r_min, 0.35, 2.0))));
     // A strut onto the model ends a tip's length above it: near that end the balls shrink so they
     // stay clear of the contact itself (they still catch a bump between the edges).
     double end_room = onto_model ? 0.9 * std::sqrt(model.squared_distance(b)) : INFINITY;
