@@ -36,12 +36,14 @@ const std::vector<Preset>& presets() {
         Params g;  // defaults above are the generic preset
         v.push_back({"generic-0.4",
                      "Any current FDM printer, 0.4 mm nozzle, PLA: 50 deg overhangs, 0.2 mm layers, 0.5 mm N walls "
-                     "(0.4 mm walls vanish in slicers), 1.5 mm sampling (PLA bridges 1.5 mm gaps cleanly), "
+                     "(0.4 mm walls vanish in slicers), 2.5 mm sampling (a tip every 2.5 mm, as dense as slicers' 15% line "
+                     "supports), "
                      "0.8 mm tips",
                      g,
                      "angle: the benchmark slicer profile (Cura/Prusa support angle 50); walls: slicer notes pitfall 6 "
                      "(0.4 mm walls kept 9-16% in CuraEngine, 0.5 mm kept all); tips: 0.5 mm rods vanish when sliced, "
-                     "0.8 mm is Cura's tree-support tip; k, tip length: the paper"});
+                     "0.8 mm is Cura's tree-support tip; sampling: measured (bench: 2.5 mm used 44-49% less support "
+                     "filament than 1.5 mm in CuraEngine, at full coverage); k, tip length: the paper"});
 
         Params r = g;
         r.preset = "replicator2-pla";
@@ -64,16 +66,16 @@ const std::vector<Preset>& presets() {
         mk4.layer_height = 0.2;
         mk4.line_width = 0.45;    // PrusaSlicer MK4 0.4 nozzle default extrusion width
         mk4.wall_thickness = 0.5;
-        mk4.sampling_distance = 2.0;
+        mk4.sampling_distance = 3.0;
         v.push_back({"prusa-mk4-pla", "Prusa MK3S/MK4, 0.4 mm nozzle, PLA (good part cooling: 55 deg overhangs)", mk4,
                      "angle: PrusaSlicer's PLA profiles support from 55 deg; line width: its 0.45 mm default; sampling "
-                     "2 mm: PLA with strong cooling bridges 2 mm cleanly"});
+                     "3 mm: PLA with strong cooling bridges the 2.2 mm between tips cleanly"});
 
         Params petg = mk4;
         petg.preset = "prusa-mk4-petg";
         petg.critical_angle = 45;  // PETG sags more and runs with less fan
         petg.gap = 0.25;           // PETG sticks to itself: PrusaSlicer's PETG profiles widen the z gap
-        petg.sampling_distance = 1.5;
+        petg.sampling_distance = 2.0;
         v.push_back({"prusa-mk4-petg", "Prusa MK3S/MK4, 0.4 mm nozzle, PETG (less cooling, stickier)", petg,
                      "angle 45: PETG runs with less fan and sags sooner; gap 0.25: PrusaSlicer's PETG profiles widen "
                      "the support z gap because PETG fuses to itself"});
@@ -81,7 +83,7 @@ const std::vector<Preset>& presets() {
         Params ender = g;
         ender.preset = "ender3-pla";
         ender.critical_angle = 45;  // stock single-sided fan duct: weaker overhangs
-        ender.sampling_distance = 1.5;
+        ender.sampling_distance = 2.0;
         v.push_back({"ender3-pla", "Creality Ender-3 (stock cooling), 0.4 mm nozzle, PLA", ender,
                      "angle 45: the stock single-sided fan duct cools overhangs unevenly; the rest as generic-0.4"});
         return v;

@@ -17,7 +17,7 @@ struct Params {
     double wall_thickness = 0.5;  // wall of the N-profile: slicers drop 0.4 mm walls (slicer notes, pitfall 6)
 
     // Sampling and contacts.
-    double sampling_distance = 1.5;  // overhang sample spacing on the global XY lattice
+    double sampling_distance = 2.5;  // overhang sample spacing on the global XY lattice (chosen by bench)
     double tip_length = 1.0;         // tapered tip at every model contact
     double tip_diameter = 0.8;       // tip end width at the model
     double gap = 0.2;                // z air gap between a tip and the model (one layer)

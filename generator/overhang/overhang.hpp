@@ -33,7 +33,7 @@ struct OverhangSamples {
 
 struct OverhangOptions {
     double critical_angle = 50;     // degrees from vertical
-    double sampling_distance = 1.5;
+    double sampling_distance = 2.5;
     double bed_height = 0.2;        // samples below this lie in the first layer: printed on the bed
 };
 
