@@ -358,10 +358,28 @@ Mesh parse_ply(std::string_view bytes, const std::string& name) {
         return read_le<double>(buf);
     };
 
+    // Every row of every element takes at least one byte (binary) or one word (ASCII) of the body,
+    // so the rows of all elements together cannot outnumber the body's bytes: a cheap guard that
+    // keeps a tiny file with huge counts from making us allocate gigabytes. A row with no
+    // properties would take no bytes at all, so such elements must be empty.
+    size_t rows = 0;
+    for (const auto& e : elements) {
+        if (e.count > 0 && e.props.empty())
+            fail(name, "PLY element '" + e.name + "' has " + std::to_string(e.count) + " rows but no properties",
+                 kReexport);
+        if (e.name == "vertex" && e.count > 0) {
+            for (const char* axis : {"x", "y", "z"}) {
+                bool found = std::any_of(e.props.begin(), e.props.end(),
+                                         [&](const PlyProperty& p) { return p.name == axis && p.count_type.empty(); });
+                if (!found) fail(name, std::string("PLY vertex element has no '") + axis + "' property", kReexport);
+            }
+        }
+        rows += static_cast<size_t>(e.count);
+        if (rows > body.size()) fail(name, "PLY element counts exceed what the file can hold (truncated or corrupt)", kReexport);
+    }
+
     for (const auto& e : elements) {
         bool is_vertex = e.name == "vertex", is_face = e.name == "face";
-        // Each element needs at least one byte or word per row: a cheap guard against absurd counts.
-        if (static_cast<size_t>(e.count) > body.size()) fail(name, "PLY element count exceeds the file size", kReexport);
         for (long r = 0; r < e.count; ++r) {
             Vec3 v;
             for (const auto& p : e.props) {

@@ -466,6 +466,21 @@ TEST(MeshIoErrors, OffAndPlyBadHeadersAndTruncation) {
     expect_input_error([&] { parse_mesh(ascii.substr(0, ascii.size() - 20), "ply", "cut2.ply"); }, {"cut2.ply", "ends early"});
 }
 
+TEST(MeshIoErrors, PlyCountsCannotOutgrowTheFile) {
+    // Rows without properties take no bytes: without a guard, a few hundred bytes of header could
+    // ask for billions of vertices.
+    std::string empty_rows = "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nend_header\n";
+    expect_input_error([&] { parse_mesh(empty_rows, "ply", "e.ply"); }, {"e.ply", "no properties"});
+    // Many elements, each small enough alone, together far more rows than the body has bytes.
+    std::string many = "ply\nformat binary_little_endian 1.0\n";
+    for (int i = 0; i < 50; ++i) many += "element junk" + std::to_string(i) + " 90\nproperty uchar a\n";
+    many += "end_header\n" + std::string(100, '\0');
+    expect_input_error([&] { parse_mesh(many, "ply", "m.ply"); }, {"m.ply", "exceed"});
+    // A vertex element needs coordinates.
+    std::string no_z = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nend_header\n1 2\n";
+    expect_input_error([&] { parse_mesh(no_z, "ply", "z.ply"); }, {"z.ply", "no 'z' property"});
+}
+
 TEST(MeshIoErrors, ReadMeshCorpusFilesNameTheFile) {
     // The committed corpus (tests/data/bad, made by make_bad_corpus.py) through read_mesh directly.
     const std::string bad = cs::test::source_dir() + "/tests/data/bad/";
