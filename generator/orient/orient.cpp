@@ -39,7 +39,8 @@ std::vector<Vec3> merge_directions(std::vector<std::pair<double, Vec3>> weighted
     std::stable_sort(weighted.begin(), weighted.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     const double cos_max = std::cos(max_angle * M_PI / 180.0);
     std::vector<Vec3> out;
-    for (const auto& [w, d] : weighted) {
+    for (const auto& entry : weighted) {
+        const Vec3& d = entry.second;  // a plain reference: lambdas may not capture structured bindings before C++20 in clang 14
         bool near = std::any_of(out.begin(), out.end(), [&](const Vec3& o) { return dot(o, d) > cos_max; });
         if (!near) out.push_back(d);
         if (out.size() >= keep) break;

@@ -55,7 +55,9 @@ std::string mesh_xml(int id, const NamedMesh& o) {
 
 std::string encode_zip(const std::vector<std::pair<std::string, std::string>>& entries) {
     std::string out, central;
-    for (const auto& [name, data] : entries) {
+    for (const auto& entry : entries) {
+        const std::string& name = entry.first;  // captured below: clang 14 cannot capture structured bindings
+        const std::string& data = entry.second;
         std::uint32_t offset = static_cast<std::uint32_t>(out.size()), crc = crc32(data);
         auto size = static_cast<std::uint32_t>(data.size());
         auto header = [&](std::string& s, bool central_entry) {
