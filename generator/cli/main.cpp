@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <iostream>
 #include <optional>
+#include <tbb/global_control.h>
 
 #include "check/check.hpp"
 #include "core/errors.hpp"
@@ -183,6 +184,9 @@ int main(int argc, char** argv) {
     app.add_flag("-q,--quiet", quiet, "Print errors only");
     app.add_flag("-v,--verbose", verbose, "Print every stage as it starts");
     app.add_flag("--json", as_json, "Print the report JSON on stdout instead of the summary");
+    int threads = 0;
+    app.add_option("--threads", threads, "Worker threads for orientation (0: all cores); output is the same for any count")
+        ->check(CLI::Range(0, 1024));
     gen.add_to(app);
 
     // check
@@ -269,6 +273,9 @@ int main(int argc, char** argv) {
             if (verbose) std::fprintf(stderr, "  [%3d%%] %s...\n", pct, stage.c_str());
             else if (!quiet && isatty(2)) std::fprintf(stderr, "\r\033[K  [%3d%%] %s...", pct, stage.c_str());
         };
+        // Scoped to the run: the library itself keeps no global state.
+        std::optional<tbb::global_control> limit;
+        if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
         Result r = run_job(job, progress);
         if (!quiet && !verbose && isatty(2)) std::fprintf(stderr, "\r\033[K");
         if (!quiet)

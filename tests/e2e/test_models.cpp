@@ -105,6 +105,24 @@ TEST(Determinism, SameInputSameBytes) {
     EXPECT_EQ(ra.dump(), rb.dump());
 }
 
+// The whole CLI with the orientation search on: one worker thread or all, same bytes.
+TEST(Determinism, AnyThreadCountSameBytes) {
+    const std::string input = source_dir() + "/examples/models/bird.stl";
+    TempDir one, all;
+    for (auto [dir, threads] : {std::pair{&one, "1"}, std::pair{&all, "0"}}) {
+        auto r = run(quote(cli()) + " " + quote(input) + " --orient auto --no-timings -q --threads " + threads +
+                     " --out " + quote(dir->path));
+        ASSERT_EQ(r.code, 0) << r.out;
+    }
+    size_t files = 0;
+    for (const auto& f : std::filesystem::directory_iterator(one.path)) {
+        std::string name = f.path().filename().string();
+        EXPECT_EQ(slurp(one / name), slurp(all / name)) << name << " differs between 1 thread and all";
+        ++files;
+    }
+    EXPECT_GE(files, 5u);
+}
+
 class Example : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Example, ChecksPass) {

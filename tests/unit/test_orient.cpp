@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tbb/global_control.h>
 
 #include "core/errors.hpp"
 #include "mesh/repair.hpp"
@@ -159,6 +160,31 @@ TEST(Orient, Deterministic) {
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) EXPECT_EQ(a.rotation.m[i][j], b.rotation.m[i][j]);
     for (size_t i = 0; i < a.candidates.size(); ++i) EXPECT_EQ(a.candidates[i].overhang_area, b.candidates[i].overhang_area);
+}
+
+// Candidates are scored and their trees grown on worker threads: one thread or all, and which
+// model comes first in a process, must not change the answer.
+TEST(Orient, SameAnswerForAnyThreadCountAndRunOrder) {
+    Mesh m = join({box({0, 0, 0}, {5, 10, 40}), box({5, 0, 0}, {20, 10, 5}), box({-10, 0, 30}, {0, 10, 34})});
+    Mesh t = tee();
+    Orientation many_m = orient(m), many_t = orient(t);
+    Orientation one_t, one_m;
+    {
+        tbb::global_control single(tbb::global_control::max_allowed_parallelism, 1);
+        one_t = orient(t);  // the other order
+        one_m = orient(m);
+    }
+    for (auto [a, b] : {std::pair{&many_m, &one_m}, std::pair{&many_t, &one_t}}) {
+        ASSERT_EQ(a->candidates.size(), b->candidates.size());
+        EXPECT_EQ(a->chosen, b->chosen);
+        EXPECT_EQ(a->decided_by, b->decided_by);
+        for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) EXPECT_EQ(a->rotation.m[i][j], b->rotation.m[i][j]);
+        for (size_t i = 0; i < a->candidates.size(); ++i) {
+            EXPECT_EQ(a->candidates[i].overhang_area, b->candidates[i].overhang_area);
+            EXPECT_EQ(a->candidates[i].support.volume, b->candidates[i].support.volume);
+        }
+    }
 }
 
 TEST(Orient, RotationToDownTakesTheDirectionToMinusZ) {
