@@ -1,10 +1,17 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs every test (unit, end to end, rendering, bad input).
+# Installs what is missing, builds, and runs every test (unit, end to end, rendering, bad input),
+# then the same suite again built with AddressSanitizer + UndefinedBehaviorSanitizer
+# (scripts/test-sanitize.sh; about 12 minutes from scratch on 2 cores, seconds when built).
 # Tests that need ../shared/models or OpenSCAD skip with a message when those are absent.
+# CS_SANITIZE=0 scripts/test.sh skips the sanitizer pass (a quicker local loop; CI always runs it).
+# Extra arguments go to ctest in both passes (e.g. -R Orient).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh
 jobs=$(nproc 2>/dev/null || echo 2)
-cd build
-ctest --output-on-failure -j"$jobs" "$@"
+(cd build && ctest --output-on-failure -j"$jobs" "$@")
+if [ "${CS_SANITIZE:-1}" != 0 ]; then
+    echo "== the same suite under AddressSanitizer + UndefinedBehaviorSanitizer"
+    scripts/test-sanitize.sh "$@"
+fi
