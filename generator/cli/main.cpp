@@ -266,7 +266,7 @@ int main(int argc, char** argv) {
         job.timings = !no_timings;
         job.params = gen.resolve();
         // Stages in order; a terminal shows how far the run is, a pipe or file gets nothing.
-        const int total_stages = 8;
+        const int total_stages = 9;
         int stage_no = 0;
         auto progress = [&](const std::string& stage) {
             int pct = 100 * stage_no++ / total_stages;

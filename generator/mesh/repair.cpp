@@ -4,6 +4,7 @@
 #include <cstring>
 #include <numeric>
 #include <unordered_map>
+#include <utility>
 
 #include "core/errors.hpp"
 
@@ -102,9 +103,12 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
     }
     r.welded_vertices = used_raw > m.vertices.size() ? used_raw - m.vertices.size() : 0;
 
-    // 2. Drop degenerate and duplicate triangles.
+    // 2. Drop degenerate and duplicate triangles (the first of identical corner sets stays).
+    //    Duplicates are found by sorting, not hashing: on multi-million-triangle scans a hash map
+    //    of buckets costs several times the memory and time.
     const double min_area2 = std::pow(extent * 1e-9, 4);
-    std::unordered_map<std::uint64_t, std::vector<size_t>> seen;  // keyed by sorted corner hash
+    std::vector<Triangle> kept;
+    kept.reserve(raw.faces.size());
     for (const auto& f0 : raw.faces) {
         Triangle f{remap[f0[0]], remap[f0[1]], remap[f0[2]]};
         if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) {
@@ -116,40 +120,57 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
             ++r.degenerate_removed;
             continue;
         }
-        Triangle s = f;
-        std::sort(s.begin(), s.end());
-        std::uint64_t key = (std::uint64_t(s[0]) * 73856093u) ^ (std::uint64_t(s[1]) * 19349663u) ^
-                            (std::uint64_t(s[2]) * 83492791u);
-        auto& bucket = seen[key];
-        bool dup = false;
-        for (size_t j : bucket) {
-            Triangle t = m.faces[j];
+        kept.push_back(f);
+    }
+    {
+        auto corners = [&](std::uint32_t i) {
+            Triangle t = kept[i];
             std::sort(t.begin(), t.end());
-            if (t == s) dup = true;
+            return t;
+        };
+        std::vector<std::uint32_t> by_corners(kept.size());
+        std::iota(by_corners.begin(), by_corners.end(), 0u);
+        std::sort(by_corners.begin(), by_corners.end(), [&](std::uint32_t a, std::uint32_t b) {
+            auto ta = corners(a), tb = corners(b);
+            return ta != tb ? ta < tb : a < b;
+        });
+        std::vector<char> duplicate(kept.size(), 0);
+        for (size_t i = 1; i < by_corners.size(); ++i)
+            if (corners(by_corners[i]) == corners(by_corners[i - 1])) duplicate[by_corners[i]] = 1;
+        m.faces.reserve(kept.size());
+        for (size_t i = 0; i < kept.size(); ++i) {
+            if (duplicate[i]) ++r.duplicates_removed;
+            else m.faces.push_back(kept[i]);
         }
-        if (dup) {
-            ++r.duplicates_removed;
-            continue;
-        }
-        bucket.push_back(m.faces.size());
-        m.faces.push_back(f);
     }
     if (m.faces.empty())
         throw InputError(name + ": every triangle is degenerate (zero area); nothing to print. Re-export the model.");
 
-    // 3. Edge use: holes and non-manifold edges.
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> edge_faces;
-    edge_faces.reserve(m.faces.size() * 2);
-    for (std::uint32_t fi = 0; fi < m.faces.size(); ++fi)
-        for (int k = 0; k < 3; ++k) edge_faces[edge_key(m.faces[fi][k], m.faces[fi][(k + 1) % 3])].push_back(fi);
-    for (const auto& [key, fs] : edge_faces) {
-        if (fs.size() == 1) ++r.boundary_edges;
-        if (fs.size() > 2) ++r.nonmanifold_edges;
+    // 3. Edge use: holes and non-manifold edges. The face-edges sorted by edge give each edge's
+    //    faces as one run; a manifold edge (exactly two faces) links the faces across it.
+    const size_t nf = m.faces.size();
+    constexpr std::uint32_t kNone = UINT32_MAX;
+    std::vector<std::uint32_t> across(3 * nf, kNone);  // face across each face-edge, if manifold
+    {
+        std::vector<std::pair<std::uint64_t, std::uint32_t>> uses(3 * nf);  // (edge, face-edge)
+        for (std::uint32_t fi = 0; fi < nf; ++fi)
+            for (int k = 0; k < 3; ++k)
+                uses[3 * fi + k] = {edge_key(m.faces[fi][k], m.faces[fi][(k + 1) % 3]), 3 * fi + k};
+        std::sort(uses.begin(), uses.end());
+        for (size_t i = 0, j; i < uses.size(); i = j) {
+            for (j = i + 1; j < uses.size() && uses[j].first == uses[i].first;) ++j;
+            if (j - i == 1) ++r.boundary_edges;
+            if (j - i > 2) ++r.nonmanifold_edges;
+            if (j - i == 2) {
+                across[uses[i].second] = uses[i + 1].second / 3;
+                across[uses[i + 1].second] = uses[i].second / 3;
+            }
+        }
     }
 
     // 4. Orient each edge-connected patch consistently (breadth first across manifold edges).
-    std::vector<int> patch(m.faces.size(), -1);
-    std::vector<char> flip(m.faces.size(), 0);
+    std::vector<int> patch(nf, -1);
+    std::vector<char> flip(nf, 0);
     int patches = 0;
     auto directed = [&](std::uint32_t fi, std::uint32_t a, std::uint32_t b) {
         // +1 if face fi (with its current flip) traverses a->b, -1 if b->a.
@@ -158,18 +179,17 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
             if (f[k] == a && f[(k + 1) % 3] == b) return flip[fi] ? -1 : 1;
         return flip[fi] ? 1 : -1;
     };
-    for (std::uint32_t seed = 0; seed < m.faces.size(); ++seed) {
+    std::vector<std::uint32_t> queue;
+    for (std::uint32_t seed = 0; seed < nf; ++seed) {
         if (patch[seed] >= 0) continue;
-        std::vector<std::uint32_t> queue{seed};
+        queue.assign(1, seed);
         patch[seed] = patches;
         for (size_t qi = 0; qi < queue.size(); ++qi) {
             std::uint32_t fi = queue[qi];
             for (int k = 0; k < 3; ++k) {
+                std::uint32_t g = across[3 * fi + k];
+                if (g == kNone || patch[g] >= 0) continue;
                 std::uint32_t a = m.faces[fi][k], b = m.faces[fi][(k + 1) % 3];
-                const auto& fs = edge_faces[edge_key(a, b)];
-                if (fs.size() != 2) continue;
-                std::uint32_t g = fs[0] == fi ? fs[1] : fs[0];
-                if (patch[g] >= 0) continue;
                 patch[g] = patches;
                 if (directed(fi, a, b) == directed(g, a, b)) flip[g] = !flip[g];
                 queue.push_back(g);
@@ -177,6 +197,7 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
         }
         ++patches;
     }
+    std::vector<std::uint32_t>().swap(across);
     for (size_t i = 0; i < m.faces.size(); ++i)
         if (flip[i]) std::swap(m.faces[i][1], m.faces[i][2]);
 

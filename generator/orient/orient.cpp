@@ -97,16 +97,19 @@ Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::str
     for (Vec3 d : {Vec3{0, 0, 1}, Vec3{1, 0, 0}, Vec3{-1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, -1, 0}})
         dirs.push_back({d, "axis"});
     {
-        // Near-parallel hull normals merge; a direction many hull faces share is a broad, stable
-        // rest position, so merging keeps the most shared directions first.
-        auto normals = hull_face_normals(mesh.vertices);
-        if (normals.size() > 4000) normals.resize(4000);  // bounded work on huge scans
+        // Near-parallel hull facets merge; the hull area within 10 degrees of a direction says how
+        // broad and stable a rest position it is, so merging keeps the broadest first.
+        auto facets = hull_facets(mesh.vertices);
+        if (facets.size() > 4000) {  // bounded work on huge scans: the largest facets
+            std::stable_sort(facets.begin(), facets.end(), [](const auto& a, const auto& b) { return a.area > b.area; });
+            facets.resize(4000);
+        }
         const double cos_near = std::cos(10 * M_PI / 180);
         std::vector<std::pair<double, Vec3>> counted;
-        for (const auto& n : normals) {
+        for (const auto& f : facets) {
             double w = 0;
-            for (const auto& m : normals) w += dot(n, m) > cos_near;
-            counted.push_back({w, n});
+            for (const auto& g : facets) w += dot(f.normal, g.normal) > cos_near ? g.area : 0;
+            counted.push_back({w, f.normal});
         }
         for (auto& d : merge_directions(counted, 10.0, 48)) dirs.push_back({d, "hull"});
     }
@@ -134,14 +137,20 @@ Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::str
         o.decided_by = "overhang area";
         return o;
     }
-    // Each candidate's tree is independent: build them side by side.
-    tbb::parallel_for(size_t(0), n_eval, [&](size_t i) {
+    // Each candidate's tree is independent: build them side by side. Each also indexes the whole
+    // model (about 200 bytes per triangle), so past a million triangles they take turns: memory
+    // stays bounded on huge scans, and the answer is the same either way.
+    auto evaluate = [&](size_t i) {
         auto& c = o.candidates[i];
         Mesh rotated = mesh;
         for (auto& v : rotated.vertices) v = c.rotation.apply(v);
         c.support = support(rotated);
         c.evaluated = true;
-    });
+    };
+    if (mesh.faces.size() > 1'000'000)
+        for (size_t i = 0; i < n_eval; ++i) evaluate(i);
+    else
+        tbb::parallel_for(size_t(0), n_eval, evaluate);
     size_t best = 0;
     std::string why = "overhang area";
     for (size_t i = 1; i < n_eval; ++i) {

@@ -48,8 +48,15 @@ struct Orientation {
     std::size_t chosen = 0;
 };
 
-// Outward normals of the convex hull faces of the points (CGAL convex_hull_3), unit length.
-std::vector<Vec3> hull_face_normals(const std::vector<Vec3>& points);
+// A facet of the convex hull: a rest position of the model (Alexander et al. 1998).
+struct HullFacet {
+    Vec3 normal;      // outward, unit length
+    double area = 0;  // mm^2 (coplanar hull triangles make one facet)
+};
+
+// The facets of the points' convex hull (CGAL convex_hull_3), in a canonical order (by normal):
+// the same points give the same list whatever ran before, on any thread.
+std::vector<HullFacet> hull_facets(const std::vector<Vec3>& points);
 
 // The rotation taking `down` to -Z (a minimal rotation; identity when already so).
 Rotation rotation_to_down(const Vec3& down);

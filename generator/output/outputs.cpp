@@ -152,16 +152,22 @@ std::string report_json(const Result& r, const Job& job) {
 
 std::vector<OutputFile> output_files(const Result& r, const Job& job, const std::string& version) {
     std::vector<OutputFile> files;
-    Mesh supported = r.model;
-    append(supported, r.supports.mesh);
-    files.push_back({r.name + ".supported.stl", encode_stl(supported, "clever-support: model + supports")});
-    files.push_back({r.name + ".supports.stl", encode_stl(r.supports.mesh, "clever-support: supports")});
-    files.push_back({r.name + ".model.stl", encode_stl(r.model, "clever-support: placed model")});
-    files.push_back({r.name + ".3mf", encode_3mf({{r.name, r.model}, {r.name + " supports", r.supports.mesh}})});
-    files.push_back({r.name + ".report.json", report_json(r, job)});
-    ScadMeta meta{version, job.input, r.input_sha256, r.name + ".model.stl"};
-    files.push_back({r.name + ".scad", emit_scad(r.supports.sized, job.params, meta)});
-    files.push_back({"clever_support.scad", scad_template_library()});
+    files.push_back({r.name + ".supported.stl", [&r] {
+                         Mesh supported = r.model;
+                         append(supported, r.supports.mesh);
+                         return encode_stl(supported, "clever-support: model + supports");
+                     }});
+    files.push_back({r.name + ".supports.stl", [&r] { return encode_stl(r.supports.mesh, "clever-support: supports"); }});
+    files.push_back({r.name + ".model.stl", [&r] { return encode_stl(r.model, "clever-support: placed model"); }});
+    files.push_back({r.name + ".3mf", [&r] {
+                         return encode_3mf({{r.name, r.model}, {r.name + " supports", r.supports.mesh}});
+                     }});
+    files.push_back({r.name + ".report.json", [&r, &job] { return report_json(r, job); }});
+    files.push_back({r.name + ".scad", [&r, &job, version] {
+                         ScadMeta meta{version, job.input, r.input_sha256, r.name + ".model.stl"};
+                         return emit_scad(r.supports.sized, job.params, meta);
+                     }});
+    files.push_back({"clever_support.scad", [] { return scad_template_library(); }});
     return files;
 }
 
@@ -175,7 +181,7 @@ void write_outputs(const std::string& dir, const std::vector<OutputFile>& files)
         for (const auto& f : files) {
             std::string tmp = dir + "/." + f.name + ".partial";
             temps.push_back(tmp);
-            write_file_atomic(tmp, f.content);
+            write_file_atomic(tmp, f.content());
         }
     } catch (const OutputError& e) {
         cleanup();

@@ -9,6 +9,7 @@
 // was written, so a failure leaves no half-written output behind.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,13 +19,15 @@
 namespace cs {
 
 struct OutputFile {
-    std::string name;     // file name inside the output directory
-    std::string content;
+    std::string name;                      // file name inside the output directory
+    std::function<std::string()> content;  // encoded only as it is written: one file's bytes in
+                                           // memory at a time (a 5M-triangle STL is 250 MB)
 };
 
 std::string report_json(const Result& r, const Job& job);
 
-// The files of a run (without writing them).
+// The files of a run (without encoding or writing them; they refer to `r` and `job`, which must
+// outlive them).
 std::vector<OutputFile> output_files(const Result& r, const Job& job, const std::string& version);
 
 // Creates `dir` if needed and writes all files atomically as a set. Throws OutputError.

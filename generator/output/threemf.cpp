@@ -1,9 +1,11 @@
 #include "output/threemf.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <fmt/format.h>
-#include <map>
+#include <iterator>
+#include <numeric>
 #include <tuple>
 
 namespace cs {
@@ -29,31 +31,42 @@ void put32(std::string& s, std::uint32_t v) {
     for (int i = 0; i < 4; ++i) s.push_back(char((v >> (8 * i)) & 0xFF));
 }
 
-std::string mesh_xml(int id, const NamedMesh& o) {
-    // Share identical vertices: 3MF meshes are indexed.
-    std::map<std::tuple<double, double, double>, std::uint32_t> index;
-    std::vector<Vec3> verts;
-    std::string tris;
+// Appends the object's XML to `s`. Identical vertices are shared (3MF meshes are indexed), found
+// by sorting rather than a map: a 5M-triangle scan stays within a few hundred megabytes.
+void append_mesh_xml(std::string& s, int id, const NamedMesh& o) {
+    const auto& mv = o.mesh.vertices;
+    std::vector<std::uint32_t> by_coords(mv.size());
+    std::iota(by_coords.begin(), by_coords.end(), 0u);
+    auto key = [&](std::uint32_t i) { return std::make_tuple(mv[i].x, mv[i].y, mv[i].z); };
+    std::sort(by_coords.begin(), by_coords.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return key(a) != key(b) ? key(a) < key(b) : a < b;
+    });
+    std::vector<std::uint32_t> same(mv.size());  // each vertex -> first of its coordinates
+    for (size_t i = 0; i < by_coords.size(); ++i)
+        same[by_coords[i]] = i > 0 && key(by_coords[i]) == key(by_coords[i - 1]) ? same[by_coords[i - 1]] : by_coords[i];
+    // Output numbers in order of first use by the faces.
+    constexpr std::uint32_t kUnused = UINT32_MAX;
+    std::vector<std::uint32_t> out_id(mv.size(), kUnused);
+    std::vector<std::uint32_t> order;
+    for (const auto& f : o.mesh.faces)
+        for (int k = 0; k < 3; ++k)
+            if (std::uint32_t c = same[f[k]]; out_id[c] == kUnused) out_id[c] = static_cast<std::uint32_t>(order.size()), order.push_back(c);
+    s.reserve(s.size() + 60 * order.size() + 45 * o.mesh.faces.size() + 200);
+    s += fmt::format("<object id=\"{}\" name=\"{}\" type=\"model\"><mesh><vertices>\n", id, o.name);
+    for (std::uint32_t c : order)
+        fmt::format_to(std::back_inserter(s), "<vertex x=\"{:.6f}\" y=\"{:.6f}\" z=\"{:.6f}\"/>\n", mv[c].x, mv[c].y, mv[c].z);
+    s += "</vertices><triangles>\n";
     for (const auto& f : o.mesh.faces) {
-        std::uint32_t v[3];
-        for (int k = 0; k < 3; ++k) {
-            const Vec3& p = o.mesh.vertices[f[k]];
-            auto [it, fresh] = index.emplace(std::make_tuple(p.x, p.y, p.z), static_cast<std::uint32_t>(verts.size()));
-            if (fresh) verts.push_back(p);
-            v[k] = it->second;
-        }
+        std::uint32_t v[3] = {out_id[same[f[0]]], out_id[same[f[1]]], out_id[same[f[2]]]};
         if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;
-        tris += fmt::format("<triangle v1=\"{}\" v2=\"{}\" v3=\"{}\"/>\n", v[0], v[1], v[2]);
+        fmt::format_to(std::back_inserter(s), "<triangle v1=\"{}\" v2=\"{}\" v3=\"{}\"/>\n", v[0], v[1], v[2]);
     }
-    std::string s = fmt::format("<object id=\"{}\" name=\"{}\" type=\"model\"><mesh><vertices>\n", id, o.name);
-    for (const auto& p : verts) s += fmt::format("<vertex x=\"{:.6f}\" y=\"{:.6f}\" z=\"{:.6f}\"/>\n", p.x, p.y, p.z);
-    s += "</vertices><triangles>\n" + tris + "</triangles></mesh></object>\n";
-    return s;
+    s += "</triangles></mesh></object>\n";
 }
 
 }  // namespace
 
-std::string encode_zip(const std::vector<std::pair<std::string, std::string>>& entries) {
+std::string encode_zip(std::vector<std::pair<std::string, std::string>> entries) {
     std::string out, central;
     for (const auto& entry : entries) {
         const std::string& name = entry.first;  // captured below: clang 14 cannot capture structured bindings
@@ -102,25 +115,25 @@ std::string encode_3mf(const std::vector<NamedMesh>& objects) {
     int id = 1;
     for (const auto& o : objects) {
         if (o.mesh.faces.empty()) continue;
-        model += mesh_xml(id, o);
+        append_mesh_xml(model, id, o);
         build += fmt::format("<item objectid=\"{}\"/>\n", id);
         ++id;
     }
     model += "</resources>\n" + build + "</build>\n</model>\n";
-    return encode_zip({
-        {"[Content_Types].xml",
-         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-         "<Types xmlns=\"http://schemas.openxmlformats.org/package/2006/content-types\">"
-         "<Default Extension=\"rels\" ContentType=\"application/vnd.openxmlformats-package.relationships+xml\"/>"
-         "<Default Extension=\"model\" ContentType=\"application/vnd.ms-package.3dmanufacturing-3dmodel+xml\"/>"
-         "</Types>\n"},
-        {"_rels/.rels",
-         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-         "<Relationships xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\">"
-         "<Relationship Target=\"/3D/3dmodel.model\" Id=\"rel0\" "
-         "Type=\"http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel\"/></Relationships>\n"},
-        {"3D/3dmodel.model", model},
-    });
+    std::vector<std::pair<std::string, std::string>> parts;
+    parts.emplace_back("[Content_Types].xml",
+                       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                       "<Types xmlns=\"http://schemas.openxmlformats.org/package/2006/content-types\">"
+                       "<Default Extension=\"rels\" ContentType=\"application/vnd.openxmlformats-package.relationships+xml\"/>"
+                       "<Default Extension=\"model\" ContentType=\"application/vnd.ms-package.3dmanufacturing-3dmodel+xml\"/>"
+                       "</Types>\n");
+    parts.emplace_back("_rels/.rels",
+                       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                       "<Relationships xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\">"
+                       "<Relationship Target=\"/3D/3dmodel.model\" Id=\"rel0\" "
+                       "Type=\"http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel\"/></Relationships>\n");
+    parts.emplace_back("3D/3dmodel.model", std::move(model));
+    return encode_zip(std::move(parts));
 }
 
 }  // namespace cs

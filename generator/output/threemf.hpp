@@ -12,12 +12,13 @@ namespace cs {
 
 struct NamedMesh {
     std::string name;
-    Mesh mesh;  // triangle soup or indexed: identical vertices are shared in the output
+    const Mesh& mesh;  // triangle soup or indexed: identical vertices are shared in the output
 };
 
 std::string encode_3mf(const std::vector<NamedMesh>& objects);
 
 // A ZIP archive of the given (name, content) entries, stored without compression.
-std::string encode_zip(const std::vector<std::pair<std::string, std::string>>& entries);
+// Entries are taken by value: move large ones in.
+std::string encode_zip(std::vector<std::pair<std::string, std::string>> entries);
 
 }  // namespace cs

@@ -50,6 +50,10 @@ std::string stem(const std::string& path) {
 
 Supports build_supports(const Mesh& placed, const std::vector<Sample>& samples, const Params& p) {
     ModelQuery q(placed);
+    return build_supports(q, samples, p);
+}
+
+Supports build_supports(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p) {
     Supports s;
     s.sized = size_struts(grow_tree(q, samples, p), p);
     s.bodies = build_bodies(s.sized, p);
@@ -72,6 +76,7 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     Mesh raw = sw.time("load", progress, [&] { return read_mesh(job.input); });
     r.input_sha256 = file_sha256(job.input);
     Mesh repaired = sw.time("repair", progress, [&] { return repair_mesh(raw, job.input, r.repair); });
+    raw = Mesh();  // each stage's input is released once the next has its own: big scans need the room
     for (const auto& w : r.repair.warnings) r.warnings.push_back(w);
     if (job.self_intersection_check) {
         r.self_intersections = sw.time("self-intersections", progress, [&] { return count_self_intersections(repaired, 1000); });
@@ -87,7 +92,7 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         Vec3 size = bounding_box(repaired).size();
         scale = *job.fit / std::max({size.x, size.y, size.z});
     }
-    Mesh scaled = repaired;
+    Mesh scaled = std::move(repaired);
     for (auto& v : scaled.vertices) v = v * scale;
     if (scale < 0)
         for (auto& f : scaled.faces) std::swap(f[1], f[2]);
@@ -118,12 +123,17 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     });
     r.model = place_on_bed(scaled, 1.0, r.orientation.rotation.m, r.placement);
     r.placement.scale = scale;
+    scaled = Mesh();
 
     r.samples = sw.time("overhangs", progress, [&] { return sample_overhangs(r.model, oo); });
-    r.supports = sw.time("tree", progress, [&] { return build_supports(r.model, r.samples.samples, p); });
+    // One index of the model serves the tree and the baseline (on a 5M-triangle scan it takes
+    // seconds and most of a gigabyte).
+    auto query = sw.time("model index", progress, [&] { return std::make_unique<ModelQuery>(r.model); });
+    r.supports = sw.time("tree", progress, [&] { return build_supports(*query, r.samples.samples, p); });
     Params columns = p;
     columns.strategy = "columns";
-    r.columns = sw.time("columns baseline", progress, [&] { return build_supports(r.model, r.samples.samples, columns); });
+    r.columns = sw.time("columns baseline", progress, [&] { return build_supports(*query, r.samples.samples, columns); });
+    query.reset();
     if (const auto& st = r.supports.sized.tree.stats; st.dropped)
         r.warnings.push_back(std::to_string(st.dropped) + " overhang samples lie where no strut fits" +
                              (p.supports_on_model ? "" : " (or can reach the bed)") +

@@ -17,6 +17,8 @@
 
 namespace cs {
 
+class ModelQuery;
+
 struct Job {
     std::string input;           // mesh file
     double scale = 1;            // applied first
@@ -62,6 +64,8 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
 
 // Builds supports for an already placed model (used by run_job and orientation scoring).
 Supports build_supports(const Mesh& placed, const std::vector<Sample>& samples, const Params& p);
+// The same, with an index of the placed model already built.
+Supports build_supports(const ModelQuery& placed, const std::vector<Sample>& samples, const Params& p);
 
 std::string sha256_hex(std::string_view bytes);
 std::string file_sha256(const std::string& path);

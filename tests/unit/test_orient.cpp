@@ -187,6 +187,27 @@ TEST(Orient, SameAnswerForAnyThreadCountAndRunOrder) {
     }
 }
 
+// CGAL's hull draws from a per-thread random generator that moves on with every call: the
+// facets must not show it (this once changed the candidates between one thread and two).
+TEST(Orient, HullFacetsDoNotDependOnWhatRanBefore) {
+    Mesh m = join({box({0, 0, 0}, {5, 10, 40}), box({5, 0, 0}, {20, 10, 5}), box({-10, 0, 30}, {0, 10, 34})});
+    auto first = hull_facets(m.vertices);
+    for (int i = 0; i < 3; ++i) hull_facets(tee().vertices);
+    auto again = hull_facets(m.vertices);
+    ASSERT_EQ(first.size(), again.size());
+    for (size_t i = 0; i < first.size(); ++i) {
+        EXPECT_EQ(first[i].normal.x, again[i].normal.x);
+        EXPECT_EQ(first[i].normal.y, again[i].normal.y);
+        EXPECT_EQ(first[i].normal.z, again[i].normal.z);
+        EXPECT_EQ(first[i].area, again[i].area);
+    }
+    // Coplanar hull triangles are one facet: a box's hull has six, whatever its triangulation.
+    EXPECT_EQ(hull_facets(box({0, 0, 0}, {3, 4, 5}).vertices).size(), 6u);
+    double total = 0;
+    for (const auto& f : hull_facets(box({0, 0, 0}, {3, 4, 5}).vertices)) total += f.area;
+    EXPECT_NEAR(total, 2 * (12 + 15 + 20), 1e-6);
+}
+
 TEST(Orient, RotationToDownTakesTheDirectionToMinusZ) {
     for (Vec3 d : {Vec3{0, 0, -1}, Vec3{0, 0, 1}, Vec3{1, 0, 0}, normalized(Vec3{1, 2, -3}), normalized(Vec3{-0.3, 0.1, 0.9})}) {
         Vec3 r = rotation_to_down(d).apply(d);
