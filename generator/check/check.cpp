@@ -105,28 +105,94 @@ Mesh weld(const Mesh& raw) {
 
 std::vector<Mesh> split_shells(const Mesh& raw) {
     Mesh m = weld(raw);
-    // Faces join across edges that exactly two faces share. Separate solids that happen to share
-    // vertices, or a whole ring where two bodies meet end to end, stay apart.
+    // Faces join across their edges. An edge that exactly two faces share joins them. Where
+    // solids touch (two struts ending at one bed point, bodies meeting end to end) an edge has
+    // more faces; there each face joins its neighbour on its solid's inner side: turning about the
+    // edge from a face into the material behind it, the first face met bounds the same solid.
     std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> edge_faces;
     for (std::uint32_t fi = 0; fi < m.faces.size(); ++fi)
         for (int k = 0; k < 3; ++k) edge_faces[std::minmax(m.faces[fi][k], m.faces[fi][(k + 1) % 3])].push_back(fi);
-    std::vector<int> comp(m.faces.size(), -1);
-    int count = 0;
-    for (std::uint32_t seed = 0; seed < m.faces.size(); ++seed) {
-        if (comp[seed] >= 0) continue;
-        std::vector<std::uint32_t> stack{seed};
-        comp[seed] = count;
-        while (!stack.empty()) {
-            auto f = stack.back();
-            stack.pop_back();
-            for (int k = 0; k < 3; ++k) {
-                const auto& fs = edge_faces[std::minmax(m.faces[f][k], m.faces[f][(k + 1) % 3])];
-                if (fs.size() != 2) continue;
-                for (auto g : fs)
-                    if (comp[g] < 0) comp[g] = count, stack.push_back(g);
+    std::vector<int> parent(m.faces.size());
+    for (size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+    auto find = [&](int x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    auto unite = [&](int a, int b) {
+        a = find(a), b = find(b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    };
+    for (const auto& [edge, fs] : edge_faces) {
+        if (fs.size() == 2) {
+            unite(fs[0], fs[1]);
+            continue;
+        }
+        if (fs.size() < 2) continue;
+        const Vec3 &a = m.vertices[edge.first], &b = m.vertices[edge.second];
+        const Vec3 e = normalized(b - a);
+        struct Around {
+            double angle;
+            bool forward;  // the face runs a -> b
+            std::uint32_t face;
+        };
+        std::vector<Around> around;
+        Vec3 ref{};
+        for (auto fi : fs) {
+            const auto& f = m.faces[fi];
+            int k = 0;
+            while (std::pair<std::uint32_t, std::uint32_t>(std::minmax(f[k], f[(k + 1) % 3])) != edge) ++k;
+            bool forward = f[k] == edge.first;
+            Vec3 c = m.vertices[f[(k + 2) % 3]] - a;
+            Vec3 v = c - e * dot(c, e);  // from the edge towards the face's third corner
+            if (norm(v) == 0) continue;
+            v = normalized(v);
+            if (around.empty()) ref = v;
+            around.push_back({std::atan2(dot(cross(ref, v), e), dot(ref, v)), forward, fi});
+        }
+        std::sort(around.begin(), around.end(), [](const Around& x, const Around& y) {
+            return x.angle != y.angle ? x.angle < y.angle : x.face < y.face;
+        });
+        // Faces at one angle lie on each other (two struts ending on one bed point share their
+        // bottom ring and sides). A face running a -> b has its outside towards increasing angle
+        // about e, so its solid lies at decreasing angle: its partner runs b -> a in the nearest
+        // group of faces below its angle. Within tied groups, faces pair in order of their numbers:
+        // a solid's faces come together in the file.
+        std::vector<std::vector<const Around*>> groups;
+        for (size_t i = 0; i < around.size(); ++i) {
+            if (i == 0 || around[i].angle - around[i - 1].angle > 1e-9) groups.emplace_back();
+            groups.back().push_back(&around[i]);
+        }
+        if (groups.size() > 1 && around.back().angle - around.front().angle > 2 * M_PI - 1e-9) {
+            // The first and last groups are the same angle across +-pi.
+            for (auto* x : groups.back()) groups.front().push_back(x);
+            groups.pop_back();
+        }
+        // Each group's faces running a -> b pair with the faces running b -> a of the nearest
+        // group below that has any, in order of face number (the k-th with the k-th).
+        const size_t ng = groups.size();
+        for (size_t gi = 0; gi < ng; ++gi) {
+            std::vector<std::uint32_t> fwd;
+            for (const Around* f : groups[gi])
+                if (f->forward) fwd.push_back(f->face);
+            if (fwd.empty()) continue;
+            for (size_t step = 1; step <= ng; ++step) {
+                std::vector<std::uint32_t> back;
+                for (const Around* b : groups[(gi + ng - step % ng) % ng])
+                    if (!b->forward) back.push_back(b->face);
+                if (back.empty()) continue;
+                for (size_t k = 0; k < std::min(fwd.size(), back.size()); ++k)
+                    unite(static_cast<int>(fwd[k]), static_cast<int>(back[k]));
+                break;
             }
         }
-        ++count;
+    }
+    std::vector<int> comp(m.faces.size(), -1);
+    std::map<int, int> root_id;
+    int count = 0;
+    for (size_t fi = 0; fi < m.faces.size(); ++fi) {
+        auto [it, fresh] = root_id.emplace(find(static_cast<int>(fi)), count);
+        if (fresh) ++count;
+        comp[fi] = it->second;
     }
     std::vector<Mesh> shells(count);
     std::vector<std::unordered_map<std::uint32_t, std::uint32_t>> local(count);
@@ -142,6 +208,18 @@ std::vector<Mesh> split_shells(const Mesh& raw) {
         s.faces.push_back(t);
     }
     return shells;
+}
+
+// Does the solid's foot stand on the model, within `gap` below it? Its centre and four points of
+// its footprint are asked: a tip on the very rim of a hole stands on the rim though the ray down
+// from its centre falls into the hole (or grazes the rim's edge).
+static bool rests_on_model(const ModelQuery& q, const Shell& s, double gap) {
+    const double h = 0.45 * s.bottom_width;
+    for (Vec3 d : {Vec3{0, 0, 0}, Vec3{h, 0, 0}, Vec3{-h, 0, 0}, Vec3{0, h, 0}, Vec3{0, -h, 0}}) {
+        auto hit = q.first_hit(s.bottom + d + Vec3{0, 0, 1e-4}, {0, 0, -1});
+        if (hit && hit->distance <= gap) return true;
+    }
+    return false;
 }
 
 CheckResult check_supports(const Mesh& model_in, const Mesh& supports, const Params& p, const CheckOptions& o) {
@@ -189,8 +267,7 @@ CheckResult check_supports(const Mesh& model_in, const Mesh& supports, const Par
             is_tip[si] = 1;
         }
         // A tip standing on the model: its bottom is about a gap above the model.
-        auto below = q.first_hit(s.bottom + Vec3{0, 0, 1e-4}, {0, 0, -1});
-        if (s.zmin > 0.05 && below && below->distance <= contact_tolerance(p)) is_tip[si] = 1;
+        if (s.zmin > 0.05 && rests_on_model(q, s, contact_tolerance(p))) is_tip[si] = 1;
     }
 
     // Penetration: edges that cross the model surface, or shells lying wholly inside it.
@@ -232,11 +309,7 @@ CheckResult check_supports(const Mesh& model_in, const Mesh& supports, const Par
     auto pack = [](long i, long j) { return (std::uint64_t(i) << 32) ^ std::uint64_t(j & 0xffffffff); };
     for (size_t i : order) {
         const Shell& s = shells[i];
-        bool ok = s.zmin <= 0.05;
-        if (!ok) {
-            auto hit = q.first_hit(s.bottom + Vec3{0, 0, 1e-4}, {0, 0, -1});
-            ok = hit && hit->distance <= p.gap + 0.05;
-        }
+        bool ok = s.zmin <= 0.05 || rests_on_model(q, s, p.gap + 0.05);
         if (!ok) {
             long ci = static_cast<long>(std::floor(s.bottom.x / cell)), cj = static_cast<long>(std::floor(s.bottom.y / cell));
             for (long a = ci - 1; a <= ci + 1 && !ok; ++a)

@@ -208,3 +208,46 @@ TEST(Check, SplitShellsAndClosedness) {
     open.faces.pop_back();
     EXPECT_FALSE(is_closed_and_consistent(open));
 }
+
+// Where solids touch, an edge has four faces; each solid must still come out whole and closed.
+TEST(Check, SolidsTouchingAlongAnEdgeSplitIntoWholeSolids) {
+    Mesh two = box({0, 0, 0}, {1, 1, 1});
+    append(two, box({1, 1, 0}, {2, 2, 1}));  // shares the vertical edge x = y = 1
+    auto shells = split_shells(two);
+    ASSERT_EQ(shells.size(), 2u);
+    for (const auto& s : shells) {
+        EXPECT_TRUE(is_closed_and_consistent(s));
+        EXPECT_NEAR(signed_volume(s), 1, 1e-12);
+    }
+}
+
+// Two struts standing on one bed point share their whole bottom ring and lie on each other's
+// sides: still two closed solids (this happened on the Menger sponge's symmetry lines).
+TEST(Check, StrutsOnOneBedPointSplitIntoWholeSolids) {
+    Params p;
+    Body low{BodyKind::Strut, Profile::N, {30, 0, 0}, {30, 0, 5}, 2.0, 2.0};
+    Body high{BodyKind::Strut, Profile::N, {30, 0, 0}, {30, 0, 12}, 2.0, 2.0};
+    Mesh both = body_mesh(low, p.wall_thickness);
+    append(both, body_mesh(high, p.wall_thickness));
+    auto shells = split_shells(both);
+    ASSERT_EQ(shells.size(), 2u);
+    for (const auto& s : shells) EXPECT_TRUE(is_closed_and_consistent(s));
+    Fixture f;
+    CheckResult r = f.check(with(f.supports, both));
+    EXPECT_EQ(r.open_bodies + r.inward_bodies + r.ungrounded_bodies, 0u) << r.summary();
+}
+
+// A tip standing on the very rim of a step of the model: the ray down from its centre misses the
+// model, but its footprint rests on the rim.
+TEST(Check, TipOnTheRimOfAStepIsGrounded) {
+    Params p;
+    Mesh model = box({0, 0, 0}, {10, 10, 5});  // the step's top at z = 5, rim at x = 10
+    Body tip{BodyKind::ContactTip, Profile::Square, {10.05, 5, 5 + p.gap}, {10.05, 5, 7}, p.tip_diameter, 1.0};
+    CheckResult r = check_supports(model, body_mesh(tip, p.wall_thickness), p, {});
+    EXPECT_EQ(r.ungrounded_bodies, 0u) << r.summary();
+    // Moved off the rim by more than its footprint, it floats.
+    Body off = tip;
+    off.bottom.x = off.top.x = 11;
+    CheckResult r2 = check_supports(model, body_mesh(off, p.wall_thickness), p, {});
+    EXPECT_EQ(r2.ungrounded_bodies, 1u) << r2.summary();
+}
