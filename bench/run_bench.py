@@ -42,7 +42,7 @@ PY = "/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executabl
 QUICK_SHARED = ["bridge", "u_overhang", "extruder_idler"]
 QUICK_EXAMPLES = ["arches"]
 SCALING_MODEL = "armadillo"
-SCALING_SAMPLINGS = [1.5, 0.75, 0.375, 0.1875]
+SCALING_SAMPLINGS = [2.5, 1.25, 0.625, 0.3125]  # the default, halved three times
 BIG_MODEL = "igea"
 
 _lock = threading.Lock()
