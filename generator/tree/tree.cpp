@@ -573,11 +573,22 @@ bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec
     for (double c : {0.0, clearance}) {
         if (c == clearance && c == 0.0 && clearance != 0.0) continue;
         double ra = 0.5 * wa + c, rb = 0.5 * wb + c;
+        // The built strut reaches a little past b into its joint (half a layer; 0.25 mm covers
+        // any layer height): onto the model, that end must stay clear too.
+        const Vec3 b_end = onto_model && c == 0.0 ? b + normalized(b - a) * 0.25 : b;
         for (auto [sx, sy] : {std::pair{1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
-            Vec3 ea = a + Vec3{sx * ra, sy * ra, 0}, eb = b + Vec3{sx * rb, sy * rb, 0};
+            Vec3 ea = a + Vec3{sx * ra, sy * ra, 0}, eb = b_end + Vec3{sx * rb, sy * rb, 0};
             if (model.segment_hits(ea, eb)) return false;
         }
         if (clearance == 0.0) break;
+    }
+    if (onto_model) {
+        // The strut's foot hangs a tip's length above the model: a ridge of the model can rise
+        // between its edges into the foot's square. Spokes across the square catch it.
+        const Vec3 foot = b + normalized(b - a) * 0.25;
+        const double r = 0.5 * wb;
+        for (auto [sx, sy] : {std::pair{1, 1}, {1, -1}, {-1, 1}, {-1, -1}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}})
+            if (model.segment_hits(foot, foot + Vec3{sx * r, sy * r, 0})) return false;
     }
     // The edges miss a bump of the model that pokes between them: also keep a ball around the
     // axis, as wide as the strut's square (half-diagonal), free of the model.

@@ -223,6 +223,21 @@ TEST(TreeHelpers, StrutIsClearAwayFromTheModelNotThroughIt) {
     EXPECT_TRUE(strut_is_clear(q, {11.5, 5, 15}, 1, {11.5, 5, 0}, 1, 0.3));
 }
 
+// A strut onto the model ends a tip's length above it; a thin ridge of the model rising between
+// the strut's edges into its foot must still stop it.
+TEST(TreeHelpers, StrutOntoTheModelKeepsARidgeOutOfItsFoot) {
+    Mesh m = cs::test::box({0, 0, 0}, {20, 10, 5});
+    // A ridge up to z = 5.95: just under the strut's end at z = 6, but above the bottom of the
+    // built body, which reaches half a layer past its node.
+    append(m, cs::test::box({10.4, 4.5, 4.9}, {10.6, 5.5, 5.95}));
+    ModelQuery q(m);
+    // Foot 2 mm wide at z = 6 over x = 10: the ridge at x = 10.5 is inside its square, between
+    // its corner lines, and beside its axis.
+    EXPECT_FALSE(strut_is_clear(q, {10, 5, 15}, 2, {10, 5, 6}, 2, 0.0, /*onto_model=*/true));
+    // The same strut 3 mm away has the ridge outside its square.
+    EXPECT_TRUE(strut_is_clear(q, {7, 5, 15}, 2, {7, 5, 6}, 2, 0.0, /*onto_model=*/true));
+}
+
 TEST(TreeHelpers, FirstHitInConeSeesTheModelBelow) {
     Mesh m = cs::test::box({0, 0, 0}, {10, 10, 5});
     ModelQuery q(m);
