@@ -23,6 +23,7 @@ import shutil
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -67,14 +68,23 @@ def log(msg):
 
 
 def cpu_seconds_of(cmd, timeout):
-    """Runs cmd; returns (CompletedProcess or None on timeout, user+sys CPU seconds of its children)."""
-    before = os.times()
+    """Runs cmd; returns (CompletedProcess or None on timeout, user+sys CPU seconds of it and its children,
+    from /usr/bin/time: per command even when several run at once)."""
+    fd, tfile = tempfile.mkstemp(prefix="cs-handoff-time-")
+    os.close(fd)
+    wrap = ["/usr/bin/time", "-f", "%U %S", "-o", tfile] if os.path.exists("/usr/bin/time") else []
     try:
-        p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+        p = subprocess.run(wrap + cmd, capture_output=True, text=True, timeout=timeout)
     except subprocess.TimeoutExpired:
         p = None
-    after = os.times()
-    return p, (after.children_user - before.children_user) + (after.children_system - before.children_system)
+    cpu = None
+    try:
+        u, s_ = open(tfile).read().strip().splitlines()[-1].split()
+        cpu = float(u) + float(s_)
+    except (OSError, ValueError, IndexError):
+        pass
+    os.remove(tfile)
+    return p, cpu
 
 
 def generate(args, name, path, scale, work, strategy):
@@ -322,7 +332,7 @@ def main():
         path, scale = bench[name]
         log(f"{name}: generating (scale {scale})")
         m = {"scale": scale, "gen": {s: generate(args, name, path, scale, args.work, s) for s in ("tree", "columns")}}
-        cpu_total += sum(g.get("cpu_s", 0) for g in m["gen"].values())
+        cpu_total += sum(g.get("cpu_s") or 0 for g in m["gen"].values())
         if "error" in m["gen"]["tree"]:
             m["error"] = m["gen"]["tree"]["error"]
             data["models"][name] = m
@@ -333,9 +343,9 @@ def main():
                     for k in ROUTES}
             m["slices"] = {k: f.result() for k, f in futs.items()}
         for k, r in m["slices"].items():
-            cpu_total += r.get("cpu_s", 0)
+            cpu_total += r.get("cpu_s") or 0
             log(f"{name} {k}: " + (r["error"][-200:] if "error" in r else
-                                   f"{r['grams']:.2f} g {r['print_time_s'] / 60:.0f} min, cpu {r['cpu_s']:.0f} s"))
+                                   f"{r['grams']:.2f} g {r['print_time_s'] / 60:.0f} min, cpu {r['cpu_s'] or 0:.0f} s"))
         m["derived"], m["targets"] = derive(m)
         data["models"][name] = m
         data["stamp"]["cpu_total_s"] = cpu_total
