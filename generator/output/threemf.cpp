@@ -133,6 +133,22 @@ std::vector<const NamedMesh*> non_empty(const std::vector<NamedMesh>& parts) {
     return out;
 }
 
+// 3MF coordinates start at the build plate's front-left corner, and Cura keeps a 3MF's positions on
+// load (it arranges only other formats): our print, centred on the origin, would hang off that
+// corner. The build item shifts it so its footprint starts this far from the corner, which keeps it
+// on any plate it fits, clear of the slicers' border zones (skirt, brim, travel clearance).
+constexpr double kPlateCornerMarginMm = 10;
+
+std::string build_item(int object_id, const std::vector<const NamedMesh*>& parts) {
+    Box3 b;
+    for (const NamedMesh* p : parts)
+        for (const auto& f : p->mesh.faces)
+            for (int k = 0; k < 3; ++k) b.add(p->mesh.vertices[f[k]]);
+    double dx = parts.empty() ? 0 : kPlateCornerMarginMm - b.min.x, dy = parts.empty() ? 0 : kPlateCornerMarginMm - b.min.y;
+    return fmt::format("<build>\n<item objectid=\"{}\" transform=\"1 0 0 0 1 0 0 0 1 {:.6f} {:.6f} 0\"/>\n</build>\n",
+                       object_id, dx, dy);
+}
+
 // PrusaSlicer 2.5's default support_material_speed, mm/s: the per-volume perimeter speeds of the
 // supports volume are set to it (its default small_perimeter_speed, 15 mm/s, would otherwise
 // apply to every strut's closed loop).
@@ -237,7 +253,7 @@ std::string encode_3mf_cura(const std::string& name, const std::vector<NamedMesh
     }
     model += fmt::format("<object id=\"{}\" name=\"{}\" type=\"model\"><components>{}</components></object>\n", id,
                          xml_escape(name), components);
-    model += fmt::format("</resources>\n<build>\n<item objectid=\"{}\"/>\n</build>\n</model>\n", id);
+    model += "</resources>\n" + build_item(id, non_empty(parts)) + "</model>\n";
     return package(std::move(model), {});
 }
 
@@ -274,7 +290,7 @@ std::string encode_3mf_prusa(const std::string& name, const std::vector<NamedMes
         config += "</volume>\n";
     }
     config += "</object>\n</config>\n";
-    model += "</triangles></mesh></object>\n</resources>\n<build>\n<item objectid=\"1\"/>\n</build>\n</model>\n";
+    model += "</triangles></mesh></object>\n</resources>\n" + build_item(1, used) + "</model>\n";
     return package(std::move(model), {{"Metadata/Slic3r_PE_model.config", std::move(config)}});
 }
 

@@ -86,8 +86,8 @@ std::map<std::string, std::string> cura_metadata(const std::string& object) {
 }
 
 struct TwoParts {
-    Mesh model = box({0, 0, 0}, {10, 10, 10});
-    Mesh supports = box({2, 2, -5}, {3, 3, -0.2});
+    Mesh model = box({0, -5, 5}, {10, 5, 15});
+    Mesh supports = box({2, 2, 0}, {3, 3, 4.8});  // under the model, 0.2 mm z gap
 };
 
 TEST(ThreeMF, CuraGetsAGroupWhoseSupportsObjectIsMarkedPrintAsSupport) {
@@ -109,6 +109,9 @@ TEST(ThreeMF, CuraGetsAGroupWhoseSupportsObjectIsMarkedPrintAsSupport) {
     EXPECT_EQ(attribute(components[0], "objectid"), attribute(objects[0], "id"));
     EXPECT_EQ(attribute(components[1], "objectid"), attribute(objects[1], "id"));
     for (const auto& c : components) EXPECT_EQ(attribute(c, "transform"), "");
+    // Cura keeps a 3MF's positions, measured from the plate's front-left corner: the group's
+    // footprint (x from 0, y from -5) is moved to start 10 mm from that corner.
+    EXPECT_EQ(attribute(items[0], "transform"), "1 0 0 0 1 0 0 0 1 10.000000 15.000000 0");
     EXPECT_EQ(count(group, "<mesh>"), 0);
     // The model object has no settings; the supports object has exactly Cura's "Print as support".
     EXPECT_TRUE(cura_metadata(objects[0]).empty());
@@ -135,6 +138,9 @@ TEST(ThreeMF, PrusaGetsOneObjectWithTwoVolumesInContiguousBlocks) {
     auto triangles = elements(objects[0], "triangle");
     ASSERT_EQ(triangles.size(), 24u);
     ASSERT_EQ(count(objects[0], "<vertex "), 16);
+    auto items = elements(xml, "item");
+    ASSERT_EQ(items.size(), 1u);
+    EXPECT_EQ(attribute(items[0], "transform"), "1 0 0 0 1 0 0 0 1 10.000000 15.000000 0");
 
     const std::string& config = files["Metadata/Slic3r_PE_model.config"];
     auto config_objects = elements(config, "object");
