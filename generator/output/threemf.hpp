@@ -38,7 +38,8 @@ const Settings& prusa_support_volume_settings();
 
 // Cura's global / per-extruder support settings under which a support mesh prints like its tree
 // supports (they cannot be set per object): one wall, no infill, no joining of neighbouring struts
-// (support_join_distance would fill the N-profile), no interface.
+// (support_join_distance would fill the N-profile), no interface, no retraction between support
+// islands (Cura's default, which some printer profiles switch off).
 const Settings& cura_support_line_settings();
 
 // A Cura profile (.curaprofile: a ZIP of one quality_changes .cfg) with cura_support_line_settings,
