@@ -181,6 +181,14 @@ void check_shape(const Shell& s, const Params& p, const CheckOptions& o, CheckRe
     if (w > 0) r.worst_length_to_width = std::max(r.worst_length_to_width, distance(s.top, s.bottom) / w);
 }
 
+// Inside the (repaired, closed) model: the first face a ray meets faces away from the point. One
+// ray that stops at its first hit, where the winding test lists every face along three.
+bool inside_by_first_face(const ModelQuery& q, const Vec3& p) {
+    const Vec3 dir{0.5773, 0.5781, -0.5767};  // irrational-looking: no grazing of axis-aligned faces
+    auto hit = q.first_hit(p, dir);
+    return hit && dot(face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]), dir) > 0;
+}
+
 // The deepest point of a solid's surface inside the model, beyond what its contact ends may
 // reach. A face that does not touch the model's surface lies wholly on one side of it: one inside
 // test decides for all of it. A face that does is probed by halving; a piece whose bounding ball
@@ -207,7 +215,7 @@ struct DepthProbe {
         const Vec3 g = (a + b + c) / 3.0;
         const double r = std::max({distance(g, a), distance(g, b), distance(g, c)});
         const double d = std::sqrt(q.squared_distance(g));
-        const bool in = q.inside(g);
+        const bool in = inside_by_first_face(q, g);
         if (!in && (d > r || r <= tolerance)) return;  // outside, or nowhere deeper than r
         if (in && d + r <= tolerance) return;
         if (in && d > r && d - r > std::max({tolerance, end_depth_top, end_depth_bottom})) return record(g, d);
@@ -243,7 +251,7 @@ void check_penetration(const ModelQuery& q, const Shell& s, const Tolerances& t,
     std::vector<signed char> inside(s.mesh.vertices.size(), -1);
     for (const Triangle* f : apart) {
         auto v = (*f)[0];
-        if (inside[v] < 0) inside[v] = q.inside(s.mesh.vertices[v]);
+        if (inside[v] < 0) inside[v] = inside_by_first_face(q, s.mesh.vertices[v]);
         if (inside[v]) probe.probe(s.mesh.vertices[(*f)[0]], s.mesh.vertices[(*f)[1]], s.mesh.vertices[(*f)[2]], 0);
     }
     if (probe.worst_depth > r.max_penetration) r.max_penetration = probe.worst_depth, r.max_penetration_at = probe.worst_at;
