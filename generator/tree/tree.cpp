@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "query/model_query.hpp"
+#include "struts/placement.hpp"
 
 namespace cs {
 namespace {
@@ -174,16 +175,21 @@ private:
                 continue;
             }
             if (free < 2 * tip) {
-                Vec3 bottom{s.p.x, s.p.y, hit ? below + p_.gap : 0.0};
-                t_.pillars.push_back({s.p - Vec3{0, 0, p_.gap}, bottom, hit.has_value()});
-                ++t_.stats.pillars;
+                auto fit = hang_pillar(s.p);
+                t_.stats.bridged += fit == PillarFit::TooLow;
+                t_.stats.dropped += fit == PillarFit::NoRoom;
                 continue;
             }
-            int leaf = add_node(leaf_position(s.p - Vec3{0, 0, tip}), NodeKind::Leaf, s.p, p_.d_min);
-            t_.nodes[leaf].tip = tip_top(s.p);
-            // A leaf in a crevice that no strut can leave is dropped now, before others merge into it.
-            if (!can_escape(leaf)) {
-                t_.nodes[leaf].kind = NodeKind::Dropped;
+            const Vec3 top = place_tip_top(model_, s.p, p_);
+            const Vec3 at = leaf_position({top.x, top.y, s.p.z - tip});
+            // A leaf in a crevice that no strut can leave, or whose tip would cut the model, is no
+            // leaf: a pillar stands there if one fits (a slot too low for a tip and a strut), else
+            // the sample is dropped now, before others merge into it.
+            const bool stuck = !can_escape(at, p_.d_min) || !prism_is_clear(model_, at, p_.d_min, top, p_.tip_diameter);
+            if (stuck && free <= safe_length(p_, p_.d_min, 0) && hang_pillar(s.p) == PillarFit::Fits) continue;
+            int leaf = add_node(at, stuck ? NodeKind::Dropped : NodeKind::Leaf, s.p, p_.d_min);
+            t_.nodes[leaf].tip = top;
+            if (stuck) {
                 ++t_.stats.dropped;
                 continue;
             }
@@ -191,18 +197,15 @@ private:
         }
     }
 
-    // The top of a tip: one gap below the sample, lowered further where a corner of its square top
-    // would come closer to a sloping overhang than the gap.
-    Vec3 tip_top(const Vec3& sample) const {
-        Vec3 top = sample - Vec3{0, 0, p_.gap};
-        const double h = 0.5 * p_.tip_diameter;
-        double lower = 0;
-        for (auto [sx, sy] : {std::pair{1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
-            Vec3 corner = sample + Vec3{sx * h, sy * h, -p_.gap - 1.0};
-            auto hit = model_.first_hit(corner, {0, 0, 1});
-            if (hit) lower = std::max(lower, p_.gap - (hit->point.z - top.z));
+    // Under a low overhang a pillar, placed by its whole footprint (struts/placement.hpp); where
+    // none fits the print bridges the slot (too low) or the sample is given up (too tight).
+    PillarFit hang_pillar(const Vec3& sample) {
+        auto placed = fit_pillar(model_, sample, p_);
+        if (placed.fit == PillarFit::Fits) {
+            t_.pillars.push_back(placed.pillar);
+            ++t_.stats.pillars;
         }
-        return top - Vec3{0, 0, std::min(lower, contact_tolerance(p_) - p_.gap - 0.05)};
+        return placed.fit;
     }
 
     // Can a strut of width w leave point a at all: is a short strut along some fan direction
@@ -217,7 +220,6 @@ private:
         }
         return false;
     }
-    bool can_escape(int id) const { return can_escape(t_.nodes[id].p, width_[id]); }
 
     // A leaf hangs straight below its sample unless the model is too close beside it (a sample
     // next to a wall): then it moves away from the wall, slanting its tip, so the strut below it
@@ -465,7 +467,8 @@ private:
             }
             case Target::Model:
             case Target::SteepModel:
-                connect(id, add_node(c.point, NodeKind::ModelContact, c.contact, bottom_width(id, c.point)));
+                connect(id, add_node(c.point, NodeKind::ModelContact, contact_under_tip(model_, c.contact, c.point.z, p_),
+                                     bottom_width(id, c.point)));
                 ++t_.stats.model_contacts;
                 break;
             case Target::Bed: {
