@@ -13,8 +13,8 @@ namespace {
 // How far a tip's top or a pillar may move off its sample: well inside the reach of its contact
 // (the lattice cell's radius, (sqrt 2 / 2) * sampling, for any sampling of a millimetre or more).
 constexpr double kMaxShift = 0.5;
-// A pillar's footprint counts as level when its corners' floors differ by no more than this:
-// such a placement is preferred, it stands on all of its foot.
+// A footprint counts as level when its floor's heights differ by no more than this: such a
+// placement is preferred, it stands on all of its foot.
 constexpr double kLevel = 0.05;
 
 // Straight below the sample first, then rings of eight directions a quarter and a half millimetre
@@ -53,20 +53,50 @@ std::optional<double> ceiling_drop(const ModelQuery& model, const std::array<Vec
 // How much lower than a gap under the sample a tip's top may sit and still count as a contact.
 double allowed_drop(const Params& p) { return contact_tolerance(p) - p.gap - 0.05; }
 
+// A foot bears on the model near its axis, not at a corner: on a slope, a foot a gap above its
+// highest corner would hang over the model everywhere else (and `check` would not see it standing).
+// So its gap is measured from the highest floor under a central cross (the centre and four
+// points this share of the foot's width out along its axes), and a placement is preferred where
+// every corner then keeps at least kMinFootAir of air.
+constexpr double kBearing = 0.45;
+// Air kept under the highest corner of a foot on a slope: a quarter of the default gap, enough
+// that no corner fuses to the model.
+constexpr double kMinFootAir = 0.05;
+
 struct Floor {
-    double highest = -INFINITY, lowest = INFINITY;
+    double z = 0;          // the gap under the foot is measured from here
     bool on_model = false;
+    bool level = false;    // corners and centre within kLevel of each other
+    bool clear = false;    // every corner keeps kMinFootAir under a foot a gap above z
 };
 
-// What is below a square's corners: the model (highest point under any corner) or the bed.
-Floor floor_under(const ModelQuery& model, const std::array<Vec3, 5>& square) {
-    Floor fl;
-    for (const auto& q : square) {
+struct Span {
+    double high = -INFINITY, low = INFINITY;
+};
+
+// Highest and lowest of the model (or the bed, 0) straight below the points.
+template <size_t N>
+Span heights_below(const ModelQuery& model, const std::array<Vec3, N>& points, bool& on_model) {
+    Span s;
+    for (const auto& q : points) {
         auto hit = model.first_hit(q, {0, 0, -1});
+        on_model = on_model || hit.has_value();
         double z = hit ? hit->point.z : 0.0;
-        fl.on_model = fl.on_model || hit.has_value();
-        fl.highest = std::max(fl.highest, z), fl.lowest = std::min(fl.lowest, z);
+        s.high = std::max(s.high, z), s.low = std::min(s.low, z);
     }
+    return s;
+}
+
+// What a square foot of width w around c (at the height rays start from) stands on.
+Floor floor_under(const ModelQuery& model, const Vec3& c, double w, double gap) {
+    const double b = kBearing * w;
+    const std::array<Vec3, 5> cross{c, c + Vec3{b, 0, 0}, c + Vec3{-b, 0, 0}, c + Vec3{0, b, 0}, c + Vec3{0, -b, 0}};
+    Floor fl;
+    const Span corners = heights_below(model, square_points(c, w), fl.on_model);
+    const Span central = heights_below(model, cross, fl.on_model);
+    fl.z = central.high;
+    fl.clear = corners.high <= central.high + gap - kMinFootAir;
+    fl.level = std::max(corners.high, central.high) - std::min(corners.low, central.low) <= kLevel;
     return fl;
 }
 
@@ -82,7 +112,7 @@ bool in_open_air(const ModelQuery& model, const Vec3& centre, const std::array<V
 struct Attempt {
     PillarFit fit = PillarFit::NoRoom;
     Pillar pillar;
-    bool level = false;
+    int rank = 2;  // 0: on a level floor, 1: on a slope with air under every corner, 2: a corner dips
 };
 
 Attempt pillar_at(const ModelQuery& model, const Vec3& sample, const Vec3& centre, double below, const Params& p) {
@@ -92,14 +122,14 @@ Attempt pillar_at(const ModelQuery& model, const Vec3& sample, const Vec3& centr
     if (!in_open_air(model, mid, top, foot)) return {};
     auto drop = ceiling_drop(model, top, sample.z);
     if (!drop || *drop > allowed_drop(p)) return {};
-    const Floor fl = floor_under(model, foot);
+    const Floor fl = floor_under(model, mid, p.d_min, p.gap);
     Pillar pl;
     pl.on_model = fl.on_model;
     pl.top = {centre.x, centre.y, sample.z - *drop - p.gap};
-    pl.bottom = {centre.x, centre.y, fl.on_model ? fl.highest + p.gap : 0.0};
+    pl.bottom = {centre.x, centre.y, fl.on_model ? fl.z + p.gap : 0.0};
     if (pl.top.z - pl.bottom.z < p.layer_height) return {PillarFit::TooLow, pl};
     if (!prism_is_clear(model, pl.bottom, p.d_min, pl.top, p.tip_diameter)) return {};
-    return {PillarFit::Fits, pl, fl.highest - fl.lowest <= kLevel};
+    return {PillarFit::Fits, pl, fl.level ? 0 : fl.clear ? 1 : 2};
 }
 
 }  // namespace
@@ -118,22 +148,22 @@ bool prism_is_clear(const ModelQuery& model, const Vec3& bottom, double wb, cons
 PillarPlacement fit_pillar(const ModelQuery& model, const Vec3& sample, const Params& p) {
     auto hit = model.first_hit(sample - Vec3{0, 0, 1e-4}, {0, 0, -1});
     const double below = hit ? hit->point.z : 0.0;
-    std::optional<Pillar> first_fit;
+    std::optional<Attempt> best;
     bool too_low = false;
     for (const auto& off : nearby_offsets()) {
         Attempt a = pillar_at(model, sample, sample + off, below, p);
         too_low = too_low || a.fit == PillarFit::TooLow;
-        if (a.fit != PillarFit::Fits) continue;
-        if (a.level) return {PillarFit::Fits, a.pillar};
-        if (!first_fit) first_fit = a.pillar;
+        if (a.fit != PillarFit::Fits || (best && best->rank <= a.rank)) continue;
+        best = a;
+        if (a.rank == 0) break;
     }
-    if (first_fit) return {PillarFit::Fits, *first_fit};
+    if (best) return {PillarFit::Fits, best->pillar};
     return {too_low ? PillarFit::TooLow : PillarFit::NoRoom, {}};
 }
 
 Vec3 contact_under_tip(const ModelQuery& model, const Vec3& contact, double from_z, const Params& p) {
-    const Floor fl = floor_under(model, square_points({contact.x, contact.y, from_z}, p.tip_diameter));
-    return {contact.x, contact.y, std::max(contact.z, fl.highest)};
+    const Floor fl = floor_under(model, {contact.x, contact.y, from_z}, p.tip_diameter, p.gap);
+    return {contact.x, contact.y, std::max(contact.z, fl.z)};
 }
 
 Vec3 place_tip_top(const ModelQuery& model, const Vec3& sample, const Params& p) {

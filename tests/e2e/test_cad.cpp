@@ -5,8 +5,10 @@
 // of issue #12, measured here from the meshes alone:
 //   penetration  no point of any solid (tips included) lies deeper in the model than a fraction
 //                of the air gap;
-//   air gap      above the top and below the bottom of every solid, the model is no nearer
-//                straight up or down than the z gap (minus a rounding allowance);
+//   air gap      above the top of every solid the model is no nearer straight up than the z gap
+//                (minus a rounding allowance); below the foot of a solid standing on the model,
+//                no corner is nearer than a quarter of it (a foot on a slope bears on the model
+//                near its axis, so its uphill corner comes closer than a full gap);
 //   coverage     every overhang point has a contact within (sqrt 2 / 2) * sampling: the lattice's
 //                own cell radius, so no point relies on a neighbour's contact across a cell;
 //   grounding    every solid stands on the bed, on the model within the gap plus 0.05 mm under
@@ -34,11 +36,13 @@ constexpr double kPenetrationTolerance = 0.1;
 // The air gap may come out this much short (float rounding of the STL, the faceting of curved
 // overhangs between the rays that placed the tip).
 constexpr double kGapAllowance = 0.02;
+// Air under every corner of a foot on the model, as a share of the gap.
+constexpr double kFootAirShare = 0.25;
 
 struct StrictResult {
     double max_penetration = 0;
     std::size_t penetrating = 0, short_gaps = 0, ungrounded = 0;
-    double smallest_gap = INFINITY;
+    double smallest_gap = INFINITY, smallest_foot_air = INFINITY;
     std::vector<std::string> notes;  // first few offenders
 
     bool ok() const { return penetrating == 0 && short_gaps == 0 && ungrounded == 0; }
@@ -46,7 +50,8 @@ struct StrictResult {
         std::ostringstream s;
         s << penetrating << " solids deeper than " << kPenetrationTolerance << " mm in the model (deepest "
           << max_penetration << "), " << short_gaps << " solid ends nearer the model than the gap (nearest "
-          << smallest_gap << "), " << ungrounded << " solids rest on nothing\n";
+          << smallest_gap << " above a top, " << smallest_foot_air << " below a foot), " << ungrounded
+          << " solids rest on nothing\n";
         for (const auto& n : notes) s << "  " << n << "\n";
         return s.str();
     }
@@ -70,17 +75,15 @@ double penetration_depth(const ModelQuery& q, const Mesh& solid) {
     return depth;
 }
 
-// Nearest model straight above the solid's top corners and straight below its bottom corners
-// (the bottom only off the bed).
-double nearest_vertical_gap(const ModelQuery& q, const Mesh& solid) {
+// Nearest model straight above the solid's top corners, or straight below its foot's corners.
+double nearest_vertical_gap(const ModelQuery& q, const Mesh& solid, bool above) {
     Box3 b = bounding_box(solid);
+    const double z = above ? b.max.z : b.min.z;
     double gap = INFINITY;
-    for (const auto& v : solid.vertices) {
-        if (std::abs(v.z - b.max.z) < 1e-5)
-            if (auto hit = q.first_hit(v, {0, 0, 1})) gap = std::min(gap, hit->distance);
-        if (b.min.z > 0.05 && std::abs(v.z - b.min.z) < 1e-5)
-            if (auto hit = q.first_hit(v, {0, 0, -1})) gap = std::min(gap, hit->distance);
-    }
+    if (!above && z <= 0.05) return gap;  // on the bed
+    for (const auto& v : solid.vertices)
+        if (std::abs(v.z - z) < 1e-5)
+            if (auto hit = q.first_hit(v, {0, 0, above ? 1.0 : -1.0})) gap = std::min(gap, hit->distance);
     return gap;
 }
 
@@ -152,11 +155,14 @@ StrictResult strict_properties(const Mesh& model, const Mesh& supports, const Pa
             ++r.penetrating;
             if (r.notes.size() < 8) r.notes.push_back(where() + ": " + std::to_string(depth) + " mm deep");
         }
-        double gap = nearest_vertical_gap(q, solid);
-        r.smallest_gap = std::min(r.smallest_gap, gap);
-        if (gap < p.gap - kGapAllowance) {
+        double over = nearest_vertical_gap(q, solid, true), under = nearest_vertical_gap(q, solid, false);
+        r.smallest_gap = std::min(r.smallest_gap, over);
+        r.smallest_foot_air = std::min(r.smallest_foot_air, under);
+        if (over < p.gap - kGapAllowance || under < kFootAirShare * p.gap - kGapAllowance) {
             ++r.short_gaps;
-            if (r.notes.size() < 8) r.notes.push_back(where() + ": gap " + std::to_string(gap) + " mm");
+            if (r.notes.size() < 8)
+                r.notes.push_back(where() + ": gap " + std::to_string(over) + " mm above, " + std::to_string(under) +
+                                  " mm below");
         }
     }
     return r;
