@@ -62,6 +62,9 @@ constexpr double kBearing = 0.45;
 // Air kept under the highest corner of a foot on a slope: a quarter of the default gap, enough
 // that no corner fuses to the model.
 constexpr double kMinFootAir = 0.05;
+// To keep that air a foot may stand this much more than a gap above its cross's floor (a fifth
+// of the default gap: it still bears there).
+constexpr double kMaxFootRaise = 0.04;
 
 struct Floor {
     double z = 0;          // the gap under the foot is measured from here
@@ -94,8 +97,9 @@ Floor floor_under(const ModelQuery& model, const Vec3& c, double w, double gap) 
     Floor fl;
     const Span corners = heights_below(model, square_points(c, w), fl.on_model);
     const Span central = heights_below(model, cross, fl.on_model);
-    fl.z = central.high;
-    fl.clear = corners.high <= central.high + gap - kMinFootAir;
+    const double corner_air_floor = corners.high - (gap - kMinFootAir);
+    fl.z = std::max(central.high, std::min(corner_air_floor, central.high + kMaxFootRaise));
+    fl.clear = corner_air_floor <= fl.z;
     fl.level = std::max(corners.high, central.high) - std::min(corners.low, central.low) <= kLevel;
     return fl;
 }
@@ -112,7 +116,7 @@ bool in_open_air(const ModelQuery& model, const Vec3& centre, const std::array<V
 struct Attempt {
     PillarFit fit = PillarFit::NoRoom;
     Pillar pillar;
-    int rank = 2;  // 0: on a level floor, 1: on a slope with air under every corner, 2: a corner dips
+    int rank = 1;  // 0: on a level floor, 1: on a slope (air under every corner)
 };
 
 Attempt pillar_at(const ModelQuery& model, const Vec3& sample, const Vec3& centre, double below, const Params& p) {
@@ -128,11 +132,29 @@ Attempt pillar_at(const ModelQuery& model, const Vec3& sample, const Vec3& centr
     pl.top = {centre.x, centre.y, sample.z - *drop - p.gap};
     pl.bottom = {centre.x, centre.y, fl.on_model ? fl.z + p.gap : 0.0};
     if (pl.top.z - pl.bottom.z < p.layer_height) return {PillarFit::TooLow, pl};
-    if (!prism_is_clear(model, pl.bottom, p.d_min, pl.top, p.tip_diameter)) return {};
-    return {PillarFit::Fits, pl, fl.level ? 0 : fl.clear ? 1 : 2};
+    // A foot that would have to stand on its uphill corner (a slope too steep across it) does not fit.
+    if (!fl.clear || !prism_is_clear(model, pl.bottom, p.d_min, pl.top, p.tip_diameter)) return {};
+    return {PillarFit::Fits, pl, fl.level ? 0 : 1};
 }
 
 }  // namespace
+
+std::optional<Vec3> clear_tip_foot(const ModelQuery& model, const Vec3& foot, const Vec3& top, const Params& p) {
+    const double max_slant = 0.9 * std::tan(p.critical_angle * M_PI / 180) * (top.z - foot.z);
+    for (const auto& off : nearby_offsets()) {
+        const Vec3 c = foot + off;
+        if (horizontal_distance(c, top) > max_slant) continue;
+        if (square_is_clear(model, c, p.d_min) && prism_is_clear(model, c, p.d_min, top, p.tip_diameter)) return c;
+    }
+    return std::nullopt;
+}
+
+bool square_is_clear(const ModelQuery& model, const Vec3& c, double w) {
+    const auto sq = square_points(c, w);
+    for (size_t i = 1; i < sq.size(); ++i)
+        if (model.inside(sq[i]) || model.segment_hits(sq[i], sq[i % 4 + 1])) return false;
+    return true;
+}
 
 bool prism_is_clear(const ModelQuery& model, const Vec3& bottom, double wb, const Vec3& top, double wt) {
     const auto lo = square_points(bottom, wb), hi = square_points(top, wt);
@@ -176,6 +198,9 @@ Vec3 place_tip_top(const ModelQuery& model, const Vec3& sample, const Params& p)
         auto drop = ceiling_drop(model, square_points(c, p.tip_diameter), sample.z);
         if (!drop) continue;
         Vec3 top{c.x, c.y, sample.z - p.gap - *drop};
+        // A corner of the top in the model (the overhang's edge turning down beside the sample)
+        // is no place for a tip.
+        if (!square_is_clear(model, top, p.tip_diameter)) continue;
         if (*drop <= allowed_drop(p)) return top;
         if (*drop < least_drop) least_drop = *drop, least = top;
     }

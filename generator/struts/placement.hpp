@@ -6,6 +6,8 @@
 // steep across it, a wall beside it), it moves up to half a millimetre aside.
 #pragma once
 
+#include <optional>
+
 #include "core/geometry.hpp"
 #include "core/params.hpp"
 #include "tree/tree.hpp"
@@ -45,6 +47,15 @@ Vec3 place_tip_top(const ModelQuery& model, const Vec3& sample, const Params& p)
 // rays down from `from_z`, the top of the tip), so on a curved or sloping surface (the bottom of a
 // round hole) every corner of its foot keeps the z gap above the model.
 Vec3 contact_under_tip(const ModelQuery& model, const Vec3& contact, double from_z, const Params& p);
+
+// Where a tip's foot (d_min wide, a tip's length under `top`) can go near `foot` so the tip
+// from there up to `top` misses the model: `foot` itself or up to half a millimetre aside, never
+// slanting the tip beyond 90% of the critical angle. nullopt when nothing near is clear.
+std::optional<Vec3> clear_tip_foot(const ModelQuery& model, const Vec3& foot, const Vec3& top, const Params& p);
+
+// Is the horizontal square of width w around c (a tip's foot) in the air: no corner in the model,
+// no side crossing it?
+bool square_is_clear(const ModelQuery& model, const Vec3& c, double w);
 
 // Does the tapered square prism from `bottom` (width wb) up to `top` (width wt) miss the model?
 // Its four side edges, its axis and the rims of both ends are asked.

@@ -181,11 +181,13 @@ private:
                 continue;
             }
             const Vec3 top = place_tip_top(model_, s.p, p_);
-            const Vec3 at = leaf_position({top.x, top.y, s.p.z - tip});
-            // A leaf in a crevice that no strut can leave, or whose tip would cut the model, is no
-            // leaf: a pillar stands there if one fits (a slot too low for a tip and a strut), else
+            Vec3 at = leaf_position({top.x, top.y, s.p.z - tip});
+            // A tip that would graze the model beside it moves its foot a little where it is clear.
+            if (auto clear = clear_tip_foot(model_, at, top, p_); clear && can_escape(*clear, p_.d_min)) at = *clear;
+            // A leaf in a crevice that no strut can leave, or whose tip's foot would lie in the model
+            // (a low overhang over a step), is no leaf: a pillar stands there if one fits (a slot too low for a tip and a strut), else
             // the sample is dropped now, before others merge into it.
-            const bool stuck = !can_escape(at, p_.d_min) || !prism_is_clear(model_, at, p_.d_min, top, p_.tip_diameter);
+            const bool stuck = !can_escape(at, p_.d_min) || !square_is_clear(model_, at, p_.d_min);
             if (stuck && free <= safe_length(p_, p_.d_min, 0) && hang_pillar(s.p) == PillarFit::Fits) continue;
             int leaf = add_node(at, stuck ? NodeKind::Dropped : NodeKind::Leaf, s.p, p_.d_min);
             t_.nodes[leaf].tip = top;

@@ -19,6 +19,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <iostream>
 #include <sstream>
 
 #include "check/check.hpp"
@@ -232,6 +234,23 @@ INSTANTIATE_TEST_SUITE_P(Corpus, CadPart,
                                            Part{"box_lid", 1.0, true}, Part{"cavity", 1.0, true},
                                            Part{"first_layer"}),
                          [](const auto& info) { return info.param.name; });
+
+// The same properties as a tool for any output: CS_STRICT_MODEL=m.model.stl
+// CS_STRICT_SUPPORTS=m.supports.stl e2e_tests --gtest_filter='StrictProperties.*' (skipped
+// without them).
+TEST(StrictProperties, OfTheGivenOutput) {
+    const char* model = std::getenv("CS_STRICT_MODEL");
+    const char* supports = std::getenv("CS_STRICT_SUPPORTS");
+    if (!model || !supports) GTEST_SKIP() << "set CS_STRICT_MODEL and CS_STRICT_SUPPORTS";
+    Params p;
+    Mesh m = read_mesh(model), s = read_mesh(supports, true);
+    auto strict = strict_properties(m, s, p);
+    auto reach = check_supports(m, s, p, {.reach = std::sqrt(0.5) * p.sampling_distance});
+    std::cout << strict.summary() << "coverage within (sqrt 2 / 2) * sampling: " << reach.covered << " of "
+              << reach.overhang_points - reach.exempt << "\n";
+    EXPECT_TRUE(strict.ok());
+    EXPECT_TRUE(reach.coverage_ok());
+}
 
 }  // namespace
 }  // namespace cs::test
