@@ -1,7 +1,6 @@
 #include "check/check.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <unordered_map>
@@ -151,7 +150,6 @@ bool rests_on_model(const ModelQuery& q, const Shell& s, double within) {
 }
 
 void flag(CheckResult& r, std::string what, const Vec3& at) {
-    if (std::getenv("CS_CHECK_DEBUG")) std::fprintf(stderr, "FLAG %s\n", what.c_str());
     if (r.flagged.size() < kMaxFlags) r.flagged.push_back({std::move(what), at});
 }
 
@@ -267,7 +265,6 @@ void check_air_gap(const Shell& s, const Tolerances& t, CheckResult& r) {
     if (!s.top_contact) return;
     if (s.top_gap < r.min_air_gap) r.min_air_gap = s.top_gap, r.min_air_gap_at = s.top;
     if (s.top_gap < t.gap_min) {
-        if (std::getenv("CS_CHECK_DEBUG")) std::fprintf(stderr, "FUSED w=%.2f gap=%.3f off=%.2f,%.2f top=%.2f,%.2f,%.2f\n", s.top_width, s.top_gap, s.gap_at.x-s.top.x, s.gap_at.y-s.top.y, s.top.x, s.top.y, s.top.z);
         ++r.fused_contacts;
         char b[96];
         std::snprintf(b, sizeof b, " is fused to the model: air gap %.2f mm (at least %.2f needed) at ", s.top_gap, t.gap_min);
@@ -376,7 +373,6 @@ void check_coverage(const Mesh& model, const ModelQuery& q, const std::vector<Sh
             continue;
         }
         r.uncovered_area += x->area;
-        if (std::getenv("CS_CHECK_DEBUG")) std::fprintf(stderr, "UNCOVERED kind=%d at %.2f %.2f %.2f d=%.2f\n", int(x->kind), x->p.x, x->p.y, x->p.z, d);
         if (r.uncovered.size() < 10) r.uncovered.push_back(x->p);
     }
 }
@@ -392,31 +388,17 @@ CheckResult check_supports(const Mesh& model_in, const Mesh& supports, const Par
     r.reach = t.reach;
     r.model_closed = is_watertight(model);
 
-    auto t0 = std::chrono::steady_clock::now();
     std::vector<Shell> shells = shells_of(supports);
     r.bodies = shells.size();
-    auto t0b = std::chrono::steady_clock::now();
-    if (std::getenv("CS_CHECK_TIMES")) std::fprintf(stderr, "split %.2f\n", std::chrono::duration<double>(t0b-t0).count());
-    double ta = 0, tb = 0, tc = 0;
     for (auto& s : shells) {
-        auto a0 = std::chrono::steady_clock::now();
         find_top_contact(q, s, t);
         s.bottom_on_model = s.zmin > kOnBed && rests_on_model(q, s, t.gap + (t.gap - t.gap_min));
-        auto a1 = std::chrono::steady_clock::now();
         check_shape(s, p, o, r);
         check_air_gap(s, t, r);
-        auto a2 = std::chrono::steady_clock::now();
         if (r.model_closed) check_penetration(q, s, t, r);
-        auto a3 = std::chrono::steady_clock::now();
-        ta += std::chrono::duration<double>(a1-a0).count(); tb += std::chrono::duration<double>(a2-a1).count(); tc += std::chrono::duration<double>(a3-a2).count();
     }
-    if (std::getenv("CS_CHECK_TIMES")) std::fprintf(stderr, "contact %.2f shape %.2f pen %.2f\n", ta, tb, tc);
-    auto t1 = std::chrono::steady_clock::now();
     check_grounding(q, shells, t, r);
-    auto t2 = std::chrono::steady_clock::now();
     check_coverage(model, q, shells, p, t, r);
-    auto t3 = std::chrono::steady_clock::now();
-    if (std::getenv("CS_CHECK_TIMES")) std::fprintf(stderr, "shells %.2f ground %.2f cover %.2f\n", std::chrono::duration<double>(t1-t0).count(), std::chrono::duration<double>(t2-t1).count(), std::chrono::duration<double>(t3-t2).count());
     return r;
 }
 
