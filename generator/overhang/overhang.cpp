@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <unordered_map>
 
 #include "query/model_query.hpp"
@@ -64,19 +65,20 @@ void sample_segment(const Vec3& a, const Vec3& b, double spacing, std::vector<Ve
     for (int i = 0; i <= n; ++i) out.push_back(a + (b - a) * (double(i) / n));
 }
 
-// Overhang points coverage is judged on: the lattice refined this many times. `check` judges at
-// half the spacing; a quarter leaves no stretch between our points where it could find a hole.
-constexpr int kDemandRefinement = 4;
+// Overhang points coverage is judged on: the lattice refined this many times (`check` judges at
+// half the spacing). Every point of a face lies within half a diagonal of this finer lattice of
+// one of them (or near a corner or the centroid of a small face).
+constexpr int kDemandRefinement = 8;
 // Step along rims and ridges while looking for uncovered stretches, as a fraction of the reach:
 // fine enough that the sample placed past an uncovered point lands within a step of the best spot.
 constexpr double kEdgeStepOfReach = 0.25;
 // A rim sample goes this fraction of the reach past the first uncovered point, a hair short of the
 // full reach so rounding never leaves that point just outside.
 constexpr double kEdgeAdvance = 0.98;
-// Extras, anchors and resting points cover our points within the reach less this margin, so that
-// points judged between ours (another sampling of the same surface) are still within the full
-// reach. The lattice needs none: inside its cells every point is within reach of a corner.
-constexpr double kReachMarginOfSpacing = 0.05;
+// Extras, anchors and resting points cover our points within the reach less half a diagonal of
+// the refined lattice, so that every point between ours is still within the full reach. The
+// lattice needs no margin: inside its cells every point is within reach of a corner.
+constexpr double kReachMarginOfSpacing = std::numbers::sqrt2 / 2 / kDemandRefinement;
 
 struct EdgeSegment {
     Vec3 a, b;

@@ -622,21 +622,19 @@ namespace {
 // acceleration 1500 mm/s^2, support as a support mesh with one wall and no infill); checked against
 // its G-code in bench/results/tree_shape.md.
 // Each island costs a stop and a start: accelerating to and from a hop of a few mm at 1500 mm/s^2
-// takes about 2 * sqrt(d / a) = 0.1 s for d = 4 mm, and the outline's seam adds its own stop.
-constexpr double kIslandSeconds = 0.15;
+// takes about 2 * sqrt(d / a) = 0.1 s for d = 4 mm, the outline's seam adds its own stop, and some
+// hops retract. What the G-code of four models leaves after outline and travel: 0.20-0.26 s.
+constexpr double kIslandSeconds = 0.2;
 // Outlines of 1 to 4 mm struts are drawn in segments of a few mm: at 1500 mm/s^2 they average well
 // below the 60 mm/s support speed.
 constexpr double kOutlineMmPerSecond = 30;
 // Travel between islands at 150 mm/s, slowed the same way by acceleration over hops of a few mm.
 constexpr double kTravelMmPerSecond = 100;
 
-// Outline of one layer of a strut of width w: the square, and inside an N-profile (w >= 3 walls)
-// the two triangular holes between its walls and diagonal, each walled too.
-double outline_per_layer(double w, double wall) {
-    double outline = 4 * w;
-    if (w >= 3 * wall) outline += 2 * (2 + std::sqrt(2.0)) * (w - 2 * wall);
-    return outline;
-}
+// Outline of one layer of a strut of width w: its square. CuraEngine closes the N-profile's narrow
+// holes in a support area and walls the outside only (the G-code of four models drew 0.49-0.56 of
+// the length that walling the holes too would take).
+double outline_per_layer(double w) { return 4 * w; }
 
 // A piece of support between two heights, an island on every layer in between.
 struct Upright {
@@ -683,7 +681,7 @@ SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>&
         for (const auto& u : ups) {
             if (u.top.z < z || u.bottom.z > z || u.top.z == u.bottom.z) continue;
             islands.push_back(u.bottom + (u.top - u.bottom) * ((z - u.bottom.z) / (u.top.z - u.bottom.z)));
-            c.outline_mm += outline_per_layer(u.width, p.wall_thickness);
+            c.outline_mm += outline_per_layer(u.width);
         }
         c.island_layers += islands.size();
         c.most_islands = std::max(c.most_islands, islands.size());
