@@ -13,7 +13,7 @@ generator's coordinates (centred on the bed by CuraEngine's machine centre).
 Per directory it prints what the supports add (with supports minus model alone): print time,
 filament, travel, retractions; and from the support sections of the G-code: island-layers (a new
 island after more than 1 mm of travel), the most islands in one layer, support extrusion length and
-travel between support islands; next to them the generator's own `slicer_estimate` from the report.
+travel between support islands, and island-layers by eighths of the height (bottom first); next to them the generator's own `slicer_estimate` from the report.
 Python 3 stdlib only; imports cura_settings.py and slice.py from bench/slicers (unchanged).
 """
 import argparse
@@ -131,9 +131,11 @@ def parse_gcode(path):
             elif de < 0 and d == 0:
                 retractions += 1
             x, y = nx, ny
+    layers = layer + 1
+    by_eighth = [sum(n for l, n in islands.items() if i * layers // 8 <= l < (i + 1) * layers // 8) for i in range(8)]
     return {"travel_mm": travel, "retractions": retractions, "support_travel_mm": support_travel,
             "support_extrusion_mm": support_extrusion, "island_layers": sum(islands.values()),
-            "most_islands": max(islands.values()) if islands else 0}
+            "most_islands": max(islands.values()) if islands else 0, "islands_by_eighth": by_eighth}
 
 
 def measure(outdir, keep=None, cache={}):
@@ -170,6 +172,7 @@ def measure(outdir, keep=None, cache={}):
         "added_travel_m": (both["travel_mm"] - alone["travel_mm"]) / 1000,
         "added_retractions": both["retractions"] - alone["retractions"],
         "island_layers": both["island_layers"], "most_islands": both["most_islands"],
+        "islands_by_eighth": both["islands_by_eighth"],
         "support_extrusion_m": both["support_extrusion_mm"] / 1000,
         "support_travel_m": both["support_travel_mm"] / 1000,
     }

@@ -68,7 +68,7 @@ void sample_segment(const Vec3& a, const Vec3& b, double spacing, std::vector<Ve
 // Overhang points coverage is judged on: the lattice refined this many times (`check` judges at
 // half the spacing). Every point of a face lies within half a diagonal of this finer lattice of
 // one of them (or near a corner or the centroid of a small face).
-constexpr int kDemandRefinement = 8;
+constexpr int kDemandRefinement = 16;
 // Step along rims and ridges while looking for uncovered stretches, as a fraction of the reach:
 // fine enough that the sample placed past an uncovered point lands within a step of the best spot.
 constexpr double kEdgeStepOfReach = 0.25;
@@ -129,7 +129,10 @@ std::vector<EdgeSegment> support_edges(const Mesh& m, const std::vector<char>& c
         // on that wall; only convex borders (lips) need their own samples.
         bool any_border = over > 0 && over < static_cast<int>(fs.size());
         bool border = any_border && (fs.size() != 2 || convex());
-        if (any_border && !border) sample_segment(pa, pb, o.sampling_distance, res.anchors);
+        // (Points along it as close as the rims are judged: the whole corner carries, not just
+        // points a spacing apart.)
+        if (any_border && !border)
+            sample_segment(pa, pb, kEdgeStepOfReach * coverage_reach(o.sampling_distance), res.anchors);
         bool open_border = fs.size() == 1 && over == 1;
         bool ridge = false;
         if (fs.size() == 2 && over == 0) {
