@@ -28,8 +28,8 @@ bool owns_edge_points(const Vec3& u, const Vec3& v) {
     return dy < 0 || (dy == 0 && dx > 0);
 }
 
-// XY hash grid of points that cover overhang points around them (samples, anchors, resting
-// points), for the coverage rule of `covers`.
+// XY hash grid of points that cover overhang points around them (samples, anchors), for the
+// coverage rule of `covers`.
 class CoverGrid {
 public:
     CoverGrid(double reach, double critical_angle) : reach_(reach), angle_(critical_angle) {}
@@ -75,7 +75,7 @@ constexpr double kEdgeStepOfReach = 0.25;
 // A rim sample goes this fraction of the reach past the first uncovered point, a hair short of the
 // full reach so rounding never leaves that point just outside.
 constexpr double kEdgeAdvance = 0.98;
-// Extras, anchors and resting points cover our points within the reach less half a diagonal of
+// Extras and anchors cover our points within the reach less half a diagonal of
 // the refined lattice, so that every point between ours is still within the full reach. The
 // lattice needs no margin: inside its cells every point is within reach of a corner.
 constexpr double kReachMarginOfSpacing = std::numbers::sqrt2 / 2 / kDemandRefinement;
@@ -271,7 +271,9 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
         res.samples.push_back({p, kind});
     };
 
-    // The lattice, and what needs no sample: inside corners.
+    // The lattice, and what needs no sample: inside corners. A lattice point resting on material
+    // below gets no contact, but the overhang is printed onto that material there and bridges
+    // from it, as from an inside corner (`check` judges it so at the same lattice points).
     CoverGrid lattice{reach, o.critical_angle}, grid{reach - kReachMarginOfSpacing * s, o.critical_angle};
     for (const auto& p : lattice_samples(m, cls, s, res))
         if (p.z >= o.bed_height) add(p, SampleKind::Face, lattice);
@@ -286,28 +288,21 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
     for (size_t e = 0; e < edges.size(); ++e) along[e] = edge_points(edges[e], reach);
     auto faces = face_demand(m, cls, s / kDemandRefinement);
 
-    // Points the lattice leaves uncovered but that rest on material below need no sample, and
-    // anchor their neighbours (the printer bridges from them). All are found before any extra is
-    // placed, so the extras do not depend on the order points are visited in.
-    std::vector<Vec3> resting;
-    auto find_resting = [&](const std::vector<Vec3>& pts) {
-        for (const auto& x : pts)
-            if (x.z >= o.bed_height && !covered(x) && rests(x)) resting.push_back(x);
+    // A point needs a sample near it unless it lies in the first layer, is covered, or rests on
+    // material below (it needs none itself; off the lattice it covers nothing, since `check` may
+    // judge no resting point near it).
+    auto needs = [&](const Vec3& x, double above = INFINITY) {
+        return x.z >= o.bed_height && !covered(x, above) && !rests(x);
     };
-    find_resting(minima);
-    for (const auto& pts : along) find_resting(pts);
-    find_resting(faces);
-    for (const auto& x : resting) grid.add(x);
-
     // A local minimum is where an overhang starts printing: it keeps a sample of its own unless
     // another lies within reach and no higher than half a layer above it.
     for (const auto& x : minima)
-        if (x.z >= o.bed_height && !covered(x, 0.5 * o.bed_height)) add(x, SampleKind::Point, grid);
+        if (needs(x, 0.5 * o.bed_height)) add(x, SampleKind::Point, grid);
     // Rims and ridges: at the first uncovered point, a sample as far along the edge as still
     // covers it, so each rim sample serves the most edge it can.
     for (const auto& pts : along)
         for (size_t i = 0; i < pts.size(); ++i) {
-            if (pts[i].z < o.bed_height || covered(pts[i])) continue;
+            if (!needs(pts[i])) continue;
             size_t j = i;
             while (j + 1 < pts.size() && covers(pts[j + 1], pts[i], kEdgeAdvance * (reach - kReachMarginOfSpacing * s), o.critical_angle)) ++j;
             while (j > i && (pts[j].z < o.bed_height || rests(pts[j]))) --j;
@@ -315,7 +310,7 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
         }
     // Whatever the lattice and the rims still miss inside the faces: a gap fill at the point.
     for (const auto& x : faces)
-        if (x.z >= o.bed_height && !covered(x)) add(x, SampleKind::Centroid, grid);
+        if (needs(x)) add(x, SampleKind::Centroid, grid);
 
     std::sort(res.samples.begin(), res.samples.end(), [](const Sample& a, const Sample& b) {
         if (a.p.z != b.p.z) return a.p.z > b.p.z;

@@ -11,8 +11,9 @@
 // rims and downward ridges (one sample per 2 * reach of edge, placed as far along the edge as still
 // covers the first uncovered point), and gap fills inside faces (a face point the lattice and the
 // rims miss; also small faces that catch no lattice point). Inside corners where an overhang meets
-// a wall going down, and points with material within touching space below, need no sample and
-// count as coverage for their neighbours, as `check` counts them.
+// a wall going down need no sample and cover their neighbours within reach. Points with material
+// within touching space below need no sample; lattice points among them cover their neighbours
+// (the overhang bridges from the material there), other points do not.
 #pragma once
 
 #include <vector>
@@ -56,7 +57,7 @@ double coverage_reach(double sampling_distance);
 bool covers(const Vec3& sample, const Vec3& x, double reach, double critical_angle_deg);
 
 // Does an overhang point rest on material below it (inside overlapping shells, or with at most
-// `touching_space` of air below)? Such a point needs no support and anchors its neighbours.
+// `touching_space` of air below)? Such a point needs no support (and gets no contact).
 bool rests_on_material(const ModelQuery& model, const Vec3& x, double touching_space);
 
 // True when a face with unit outward normal `n` must be supported.
@@ -72,8 +73,7 @@ double overhang_area(const Mesh& m, const OverhangOptions& o);
 void rasterize_triangle(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, std::vector<Vec3>& out);
 
 // All support points of the placed model. With `model` (an index of the same mesh), points resting
-// on material below need no sample and cover their neighbours; without it every point is judged
-// as hanging in the air (more samples, never fewer).
+// on material below need no sample; without it every point is judged as hanging in the air.
 OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const ModelQuery* model = nullptr);
 
 }  // namespace cs
