@@ -349,6 +349,31 @@ TEST(LeanSampling, PointsRestingOnMaterialNeedNoExtras) {
     EXPECT_GT(without.samples.size(), with.samples.size());
 }
 
+TEST(LeanSampling, PointsInTheAirAreCoveredBySamplesThatGetAContact) {
+    // The T with a block under one wing, 0.4 mm below the plate (within touching space): the
+    // points over the block rest on it. Every other point has within reach a sample that does not
+    // rest (it gets a tip), an inside corner, or a lattice point over the block (the plate is
+    // printed onto the block there and bridges from it); never only an off-lattice resting point.
+    Mesh m = cs::test::t_shape();
+    append(m, box({4.3, -5.3, 0}, {11.3, 5.3, 9.6}));
+    ModelQuery q(m);
+    OverhangOptions o = default_options();
+    auto res = sample_overhangs(m, o, &q);
+    std::vector<Vec3> carriers = res.anchors;
+    for (const auto& s : res.samples)
+        if (s.kind == SampleKind::Face || !rests_on_material(q, s.p, o.touching_space)) carriers.push_back(s.p);
+    size_t in_air = 0;
+    for (const auto& x : dense_overhang_points(m, o)) {
+        if (rests_on_material(q, x, o.touching_space)) continue;
+        ++in_air;
+        EXPECT_TRUE(covered_by(carriers, x, o)) << "uncovered at " << x.x << ", " << x.y << ", " << x.z;
+    }
+    EXPECT_GT(in_air, 0u);
+    // Extras never stand where they would rest (no tip is built there).
+    for (const auto& s : res.samples)
+        if (s.kind != SampleKind::Face) EXPECT_FALSE(rests_on_material(q, s.p, o.touching_space));
+}
+
 TEST(LeanSampling, CoverageRuleIsHorizontalReachOnTheSameSurface) {
     EXPECT_NEAR(coverage_reach(2.5), 2.5 * std::sqrt(0.5), 1e-12);
     const double reach = coverage_reach(2.0);
