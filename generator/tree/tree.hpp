@@ -94,6 +94,21 @@ std::optional<Vec3> first_hit_in_cone(const ModelQuery& model, const Vec3& apex,
 bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance,
                     bool onto_model = false);
 
+// What a slicer spends printing a tree as a support mesh (CuraEngine with one support wall and no
+// infill, the route of shared/notes/slicer-handoff.md). On every layer each strut, tip and pillar
+// crossing it is an island: the nozzle travels to it and draws its outline once. The tree's sweep
+// ranks its candidates by the first term (the layers a node stays an island of its own).
+struct SlicerCost {
+    double island_layers = 0;  // islands, summed over the layers
+    double outline_mm = 0;     // outline drawn, summed over the layers
+    double travel_mm = 0;      // travel between the islands of each layer, nearest island next
+    double seconds = 0;        // all three, priced by the constants in tree.cpp
+    std::size_t most_islands = 0;  // islands in the busiest layer
+};
+
+// `strut_width`: the mean width of each strut of `t` (parallel to t.struts).
+SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>& strut_width, const Params& p);
+
 // Grows the support tree (or the columns baseline, by p.strategy) for the given samples.
 SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p);
 
