@@ -1,5 +1,5 @@
 // Which parts of the placed model need support, and the points that will carry it
-// (algorithm.md section 2).
+// (docs/algorithm.md section 2).
 //
 // A face needs support when its outward normal n has n_z < -sin(critical angle), unless it lies on
 // the bed. Face overhangs are sampled on ONE global XY lattice of spacing `sampling_distance`, so

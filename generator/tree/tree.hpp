@@ -1,8 +1,9 @@
-// The support tree: greedy cone merging, top down (algorithm.md section 3).
+// The support tree: greedy cone merging, top down (docs/algorithm.md section 3).
 //
 // Every overhang sample hangs a leaf node one tip below it. Sweeping from the highest active node
-// down, each node takes the nearest of: a meeting point with another active node's cone
-// (merge_point), the first model point in its cone (first_hit_in_cone), or the bed straight below.
+// down, each node ranks its candidates (fewest layers left as an island of its own, then
+// shortest): a meeting point with another active node's cone (merge_point), the first model point
+// in its cone (first_hit_in_cone), or the bed straight below.
 // Each candidate strut is tried against the model with clearance (strut_is_clear); the first that
 // passes wins. With `supports_on_model = false` the model is an obstacle only and nodes route down
 // to the bed around it. The `columns` strategy is the same sweep without merges or slanted struts:
@@ -77,7 +78,7 @@ double touching_space(const Params& p);
 // tip's square top needs under the steepest overhang that needs support.
 double contact_tolerance(const Params& p);
 
-// Highest point where the downward cones of apexes a and b meet (algorithm.md section 3):
+// Highest point where the downward cones of apexes a and b meet (docs/algorithm.md section 3):
 // b itself when it lies in a's cone, else the top of the cones' intersection. a must not be lower
 // than b. tan_c = tan(critical angle).
 Vec3 merge_point(const Vec3& a, const Vec3& b, double tan_c);
