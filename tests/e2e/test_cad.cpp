@@ -214,14 +214,17 @@ TEST_P(CadPart, DefaultTreePassesEveryCheck) {
     // check's own reach, 0.71 x sampling: exactly (sqrt 2 / 2) x sampling is a knife edge that
     // float32 STL coordinates fall off by 1e-5 mm at lattice cell centres.
     EXPECT_TRUE(o.check.coverage_ok()) << o.check.summary();
+    EXPECT_TRUE(o.check.ok()) << o.check.summary();  // every check: air gap, grounding, buried bottoms too
     EXPECT_TRUE(o.strict.ok()) << o.strict.summary();
 }
 
 TEST_P(CadPart, BuildplateOnlyPassesEveryCheck) {
     auto o = support_part(GetParam(), "--buildplate-only");
     expect_sound(o.check);
+    const CheckResult& c = o.check;
+    EXPECT_EQ(c.fused_contacts + c.ungrounded_bodies + c.buried_bottoms, 0u) << c.summary();
     if (!GetParam().enclosed) {
-        EXPECT_TRUE(o.check.coverage_ok()) << o.check.summary();
+        EXPECT_TRUE(o.check.ok()) << o.check.summary();
     }
     EXPECT_TRUE(o.strict.ok()) << o.strict.summary();
 }
