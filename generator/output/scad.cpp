@@ -151,7 +151,8 @@ std::string tree_data(const Supports& sp, const Params& p) {
     Rows nodes, struts, leaves, contacts, beds, pillars;
     for (size_t i = 0; i < t.nodes.size(); ++i) nodes.push_back({std::to_string(i) + " " + kind_name(t.nodes[i].kind), pt(t.nodes[i].p)});
     for (size_t e = 0; e < sp.grown_struts.size(); ++e)
-        struts.push_back({std::to_string(e), fmt::format("[{}, {}]", sp.grown_struts[e].top, sp.grown_struts[e].bottom)});
+        struts.push_back({std::to_string(e) + " onto " + kind_name(t.nodes[sp.grown_struts[e].bottom].kind),
+                          fmt::format("[{}, {}]", sp.grown_struts[e].top, sp.grown_struts[e].bottom)});
     for (size_t i = 0; i < t.nodes.size(); ++i) {
         const Node& n = t.nodes[i];
         const std::string id = std::to_string(i);

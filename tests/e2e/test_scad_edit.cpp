@@ -264,7 +264,7 @@ TEST(ScadEdit, BrokenEditsNameTheLine) {
         {"highlight_strut =", "highlight_strut = 123456;", "out of range"},
         {"support_blockers =", "support_blockers = [[[0, 0], [1, 1, 1]]];", "point [x, y, z]"},
         {"k =", "k = 0.003 * 2;", "plain value"},
-        {"  /* 0 */ [", "  /* 0 */ [0, 99999],", "out of range"},
+        {"  /* 0 onto ", "  /* 0 */ [0, 99999],", "out of range"},
     };
     for (const auto& c : cases) {
         SCOPED_TRACE(c.line);
