@@ -66,9 +66,11 @@ function cs_angle(a, b) = atan2(norm([b[0] - a[0], b[1] - a[1]]), abs(a[2] - b[2
 
 // ----------------------------------------------------------------------------- the tree, derived
 
-// Fixed points, by a C-style list comprehension (no recursion): `state` is stepped until a step
-// changes nothing. Each derived list below settles after as many steps as the tree is deep.
-// (One function per list: function literals would do, but keep the file plain.)
+// Fixed points, by a C-style list comprehension (no recursion): a state [x, step(x)] moves on
+// until the step changes nothing; the last step's result is the fixed point (cs_last). Each
+// derived list below settles after as many steps as the tree is deep. One step function per list
+// (function literals would do, but keep the file plain).
+function cs_last(steps, start) = len(steps) == 0 ? start : steps[len(steps) - 1];
 
 // Per node: the struts ending there, and the strut leaving it (-1: none), among `keep`.
 function cs_incoming(n, struts, keep) =
@@ -84,8 +86,8 @@ function cs_gone(n, struts, omit) =
     let(all = [for (e = struts) true],
         out = cs_outgoing(n, struts, all),
         direct = [for (e = [0 : len(struts) - 1]) len(search(e, omit)) > 0])
-    [for (g = direct, go = true; go; go = cs_gone_step(g, struts, out, direct) != g, g = cs_gone_step(g, struts, out, direct))
-        if (cs_gone_step(g, struts, out, direct) == g) g][0];
+    cs_last([for (s = [direct, cs_gone_step(direct, struts, out, direct)]; s[0] != s[1];
+                  s = [s[1], cs_gone_step(s[1], struts, out, direct)]) s[1]], direct);
 
 // Runs: per strut [length above it in its run (itself included), steepest above, length below,
 // steepest below]; a bend is a node with one strut in and one out that is not a leaf.
@@ -97,10 +99,9 @@ function cs_runs_step(r, struts, lens, angles, node_in, out, bend) =
         [lens[e] + above[0], max(angles[e], above[1]), lens[e] + below[2], max(angles[e], below[3])]];
 function cs_runs(struts, lens, angles, node_in, out, bend) =
     len(struts) == 0 ? [] :
-    [for (r = [for (e = struts) [0, 0, 0, 0]], go = true; go;
-          go = cs_runs_step(r, struts, lens, angles, node_in, out, bend) != r,
-          r = cs_runs_step(r, struts, lens, angles, node_in, out, bend))
-        if (cs_runs_step(r, struts, lens, angles, node_in, out, bend) == r) r][0];
+    let(start = [for (e = struts) [0, 0, 0, 0]])
+    cs_last([for (s = [start, cs_runs_step(start, struts, lens, angles, node_in, out, bend)]; s[0] != s[1];
+                  s = [s[1], cs_runs_step(s[1], struts, lens, angles, node_in, out, bend)]) s[1]], start);
 
 function cs_node_width(v, node_in, w, d_min, d_max) =
     len(node_in[v]) == 0 ? d_min
@@ -121,10 +122,11 @@ function cs_widths_step(w, nodes, struts, node_in, runs, k, d_min, d_max, streng
 // Every strut into a node is sized before the node's own strut: widths flow down to a fixed point.
 function cs_strut_widths(nodes, node_in, struts, runs, k, d_min, d_max, strength_length) =
     len(struts) == 0 ? [] :
-    [for (w = [for (s = struts) [d_min, d_min]], go = true; go;
-          go = cs_widths_step(w, nodes, struts, node_in, runs, k, d_min, d_max, strength_length) != w,
-          w = cs_widths_step(w, nodes, struts, node_in, runs, k, d_min, d_max, strength_length))
-        if (cs_widths_step(w, nodes, struts, node_in, runs, k, d_min, d_max, strength_length) == w) w][0];
+    let(start = [for (s = struts) [d_min, d_min]])
+    cs_last([for (s = [start, cs_widths_step(start, nodes, struts, node_in, runs, k, d_min, d_max, strength_length)];
+                  s[0] != s[1];
+                  s = [s[1], cs_widths_step(s[1], nodes, struts, node_in, runs, k, d_min, d_max, strength_length)]) s[1]],
+            start);
 
 // Everything the geometry needs, derived from a tree record: [keep, node_in, out, runs, widths, room].
 function cs_derive(tree, omit, k, d_min, d_max, strength_length) =
