@@ -242,8 +242,11 @@ module cs_tree(tree, omit, highlight, k, d_min, d_max, strength_length, wall, ti
     }
 }
 
-// A user's support blockers and support points, see-through in the preview (`%`: never rendered).
+// A user's support blockers (see-through blue) and support points (red) in the preview only:
+// never part of a rendered solid.
 module cs_show_edits(blockers, points) {
-    for (b = blockers) %translate(b[0]) cube(b[1] - b[0]);
-    for (q = points) %translate(q) sphere(r = 0.5, $fn = 12);
+    if ($preview) {
+        for (b = blockers) color([0.2, 0.4, 1, 0.3]) translate(b[0]) cube(b[1] - b[0]);
+        for (q = points) color("red") translate(q) sphere(r = 0.6, $fn = 16);
+    }
 }

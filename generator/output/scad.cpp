@@ -213,7 +213,7 @@ std::string emit_scad(const Supports& sp, const Job& job, const ScadMeta& meta) 
     s += "        cs_tree(cs_tree_record, omit_struts, highlight_strut, k, d_min, d_max, strength_length, wall, tip_length,\n";
     s += "                tip_diameter, feet, foot_height, foot_extra, clearance);\n";
     s += "}\n";
-    s += "cs_show_edits(support_blockers, support_points);  // see-through, preview only\n";
+    s += "cs_show_edits(support_blockers, support_points);  // in the preview only\n";
     return s;
 }
 
