@@ -23,6 +23,13 @@ std::string exact_pt(const Vec3& v) {
 }
 std::string boolean(bool b) { return b ? "true" : "false"; }
 
+// `// why` lines, then `name = value; // [slider]` (the Customizer's range, when given).
+std::string assignment(const std::string& why, const std::string& name, const std::string& value,
+                       const std::string& slider = "") {
+    std::string s = why.empty() ? "" : "// " + why + "\n";
+    return s + name + " = " + value + ";" + (slider.empty() ? "" : " // " + slider) + "\n";
+}
+
 const char* kind_name(NodeKind k) {
     switch (k) {
         case NodeKind::Leaf: return "leaf";
@@ -71,23 +78,26 @@ std::string header(const Supports& sp, const Job& job, const ScadMeta& meta) {
 }
 
 std::string customizer(const Params& p) {
-    std::string s;
-    s += "/* [Strut sizing] */\n";
-    s += "// Eqn (1) coefficient k in d = k * length * angle (mm per mm-degree): larger makes slanted struts thicker\n";
-    s += "k = " + scad_number(p.k) + "; // [0:0.0005:0.02]\n";
-    s += "// Thinnest strut (mm)\nd_min = " + scad_number(p.d_min) + "; // [0.3:0.1:5]\n";
-    s += "// Thickest strut (mm)\nd_max = " + scad_number(p.d_max) + "; // [1:0.1:10]\n";
-    s += "// Strength rule: a 1 mm strut stays safe this long (mm) at <= 30 deg; safe length grows with width^2\n";
-    s += "strength_length = " + scad_number(p.strength_length) + "; // [5:1:120]\n\n";
-    s += "/* [Walls and tips] */\n";
-    s += "// Wall thickness of the N-profile (mm); slicers drop walls of one line width (0.4)\n";
-    s += "wall = " + scad_number(p.wall_thickness) + "; // [0.3:0.05:2]\n";
-    s += "// Length of the tapered tip at each model contact (mm)\ntip_length = " + scad_number(p.tip_length) + "; // [0.2:0.1:5]\n";
-    s += "// Width of a tip where it meets the model (mm)\ntip_diameter = " + scad_number(p.tip_diameter) + "; // [0.2:0.05:3]\n\n";
-    s += "/* [Feet] */\n// Widen every strut where it stands on the bed\nfeet = " + boolean(p.feet) + ";\n";
-    s += "// Height of a foot (mm)\nfoot_height = " + scad_number(p.foot_height) + "; // [0:0.1:5]\n";
-    s += "// How much wider than its strut a foot is on each side (mm)\nfoot_extra = " + scad_number(p.foot_extra) + "; // [0:0.1:5]\n\n";
-    s += "/* [Show] */\nshow_model = true;\nshow_supports = true;\n\n";
+    std::string s = "/* [Strut sizing] */\n";
+    s += assignment("Eqn (1) coefficient k in d = k * length * angle (mm per mm-degree): larger makes slanted struts thicker",
+                    "k", scad_number(p.k), "[0:0.0005:0.02]");
+    s += assignment("Thinnest strut (mm)", "d_min", scad_number(p.d_min), "[0.3:0.1:5]");
+    s += assignment("Thickest strut (mm)", "d_max", scad_number(p.d_max), "[1:0.1:10]");
+    s += assignment("Strength rule: a 1 mm strut stays safe this long (mm) at <= 30 deg; safe length grows with width^2",
+                    "strength_length", scad_number(p.strength_length), "[5:1:120]");
+    s += "\n/* [Walls and tips] */\n";
+    s += assignment("Wall thickness of the N-profile (mm); slicers drop walls of one line width (0.4)", "wall",
+                    scad_number(p.wall_thickness), "[0.3:0.05:2]");
+    s += assignment("Length of the tapered tip at each model contact (mm)", "tip_length", scad_number(p.tip_length),
+                    "[0.2:0.1:5]");
+    s += assignment("Width of a tip where it meets the model (mm)", "tip_diameter", scad_number(p.tip_diameter),
+                    "[0.2:0.05:3]");
+    s += "\n/* [Feet] */\n";
+    s += assignment("Widen every strut where it stands on the bed", "feet", boolean(p.feet));
+    s += assignment("Height of a foot (mm)", "foot_height", scad_number(p.foot_height), "[0:0.1:5]");
+    s += assignment("How much wider than its strut a foot is on each side (mm)", "foot_extra", scad_number(p.foot_extra),
+                    "[0:0.1:5]");
+    s += "\n/* [Show] */\n" + assignment("", "show_model", "true") + assignment("", "show_supports", "true") + "\n";
     return s;
 }
 
@@ -113,37 +123,39 @@ std::string manual_edits(const ManualEdits& e) {
 
 std::string regrow_section(const Params& p) {
     std::string s = "/* [Regrow] */\n// These take effect only with `clever-support regrow THIS.scad`.\n";
-    s += "// Steepest overhang printed without support (degrees from vertical)\ncritical_angle = " +
-         scad_number(p.critical_angle) + "; // [5:1:80]\n";
-    s += "// Spacing of the supported points under overhangs (mm)\nsampling = " + scad_number(p.sampling_distance) +
-         "; // [0.25:0.25:10]\n";
-    s += "// Air between a tip and the model (mm)\ngap = " + scad_number(p.gap) + "; // [0:0.05:1]\n";
-    s += "// Air kept between struts and the model (mm)\nclearance = " + scad_number(p.model_clearance) + "; // [0:0.05:2]\n";
-    s += "// Supports stand on the bed only, routed around the model\nbuildplate_only = " + boolean(!p.supports_on_model) + ";\n\n";
-    return s;
+    s += assignment("Steepest overhang printed without support (degrees from vertical)", "critical_angle",
+                    scad_number(p.critical_angle), "[5:1:80]");
+    s += assignment("Spacing of the supported points under overhangs (mm)", "sampling", scad_number(p.sampling_distance),
+                    "[0.25:0.25:10]");
+    s += assignment("Air between a tip and the model (mm)", "gap", scad_number(p.gap), "[0:0.05:1]");
+    s += assignment("Air kept between struts and the model (mm)", "clearance", scad_number(p.model_clearance), "[0:0.05:2]");
+    s += assignment("Supports stand on the bed only, routed around the model", "buildplate_only", boolean(!p.supports_on_model));
+    return s + "\n";
 }
 
 std::string provenance(const Job& job, const ScadMeta& meta) {
     const Params& p = job.params;
+    std::string defines;
+    for (size_t i = 0; i < job.defines.size(); ++i) defines += (i ? ", " : "") + scad_string(job.defines[i]);
     std::string s = "/* [Hidden] */\n// How this file was made: `clever-support regrow` reads these.\n";
-    s += "cs_version = " + scad_string(meta.version) + ";\n";
-    s += "cs_input = " + scad_string(job.shown_input()) + ";\n";
-    s += "cs_input_path = " + scad_string(meta.input_path) + ";\n";
-    s += "cs_input_sha256 = " + scad_string(meta.input_sha256) + ";\n";
-    s += "cs_defines = [";
-    for (size_t i = 0; i < job.defines.size(); ++i) s += (i ? ", " : "") + scad_string(job.defines[i]);
-    s += "];\n";
-    s += "cs_preset = " + scad_string(p.preset) + ";\n";
-    s += "cs_layer_height = " + scad_number(p.layer_height) + ";\n";
-    s += "cs_line_width = " + scad_number(p.line_width) + ";\n";
-    s += "cs_strategy = " + scad_string(p.strategy) + ";\n";
-    s += "cs_orient = " + scad_string(job.orient) + ";\n";
-    s += "cs_scale = " + scad_number(job.scale) + ";\n";
-    s += "cs_fit = " + (job.fit ? scad_number(*job.fit) : std::string("0")) + "; // 0: not fitted\n";
-    s += "cs_self_intersection_check = " + boolean(job.self_intersection_check) + ";\n";
-    s += "cs_timings = " + boolean(job.timings) + ";\n";
-    s += "cs_model_file = " + scad_string(meta.model_file) + ";\n\n";
-    return s;
+    const std::pair<const char*, std::string> values[] = {
+        {"cs_version", scad_string(meta.version)},
+        {"cs_input", scad_string(job.shown_input())},
+        {"cs_input_path", scad_string(meta.input_path)},
+        {"cs_input_sha256", scad_string(meta.input_sha256)},
+        {"cs_defines", "[" + defines + "]"},
+        {"cs_preset", scad_string(p.preset)},
+        {"cs_layer_height", scad_number(p.layer_height)},
+        {"cs_line_width", scad_number(p.line_width)},
+        {"cs_strategy", scad_string(p.strategy)},
+        {"cs_orient", scad_string(job.orient)},
+        {"cs_scale", scad_number(job.scale)},
+        {"cs_fit", job.fit ? scad_number(*job.fit) : std::string("0")},  // 0: not fitted
+        {"cs_self_intersection_check", boolean(job.self_intersection_check)},
+        {"cs_timings", boolean(job.timings)},
+        {"cs_model_file", scad_string(meta.model_file)}};
+    for (const auto& [name, value] : values) s += assignment("", name, value);
+    return s + "\n";
 }
 
 std::string tree_data(const Supports& sp, const Params& p) {
