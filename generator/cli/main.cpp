@@ -335,8 +335,9 @@ int main(int argc, char** argv) {
 
         Job job;
         std::string dir = out_dir;
+        EditedScad edited;
         if (regrow->parsed()) {
-            EditedScad edited = read_edited_scad(regrow_file);
+            edited = read_edited_scad(regrow_file);
             job = edited.job;
             dir = edited.folder;
             if (!quiet && file_sha256(job.input) != edited.input_sha256)
@@ -369,6 +370,11 @@ int main(int argc, char** argv) {
         std::optional<tbb::global_control> limit;
         if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
         Result r = run_job(job, progress);
+        bool placed_edits = !job.edits.blockers.empty() || !job.edits.support_points.empty();
+        if (regrow->parsed() && placed_edits && pose_numbers(r.placement) != edited.pose)
+            r.warnings.push_back("the model is placed differently than when " + regrow_file +
+                                 " was written (the part, its scale or the orientation changed): check that the support "
+                                 "blockers and points still sit where you meant them");
         if (!quiet && !verbose && isatty(2)) std::fprintf(stderr, "\r\033[K");
         if (!quiet)
             for (const auto& w : r.warnings) std::fprintf(stderr, "clever-support: warning: %s\n", w.c_str());

@@ -158,6 +158,11 @@ EditedScad read_edited_scad(const std::string& path) {
     if (auto why = job.params.validate(); !why.empty()) throw ParameterError(path + ": " + why);
     job.edits = read_edits(r, check_tree(r));
     out.input_sha256 = r.text("cs_input_sha256");
+    const auto& pose = r.list("cs_pose");
+    for (size_t i = 0; i < pose.value.size(); ++i) {
+        if (!pose.value[i].is_number()) r.fail(pose.line, "cs_pose must be a list of numbers");
+        out.pose.push_back(pose.value[i].get<double>());
+    }
     auto folder = std::filesystem::path(path).parent_path();
     out.folder = folder.empty() ? "." : folder.string();
     return out;

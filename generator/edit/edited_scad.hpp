@@ -14,6 +14,7 @@ struct EditedScad {
     Job job;                    // input, defines, orientation, scale, parameters and edits
     std::string input_sha256;   // of the input when the file was written
     std::string folder;         // where the file is: regrow writes the outputs there
+    std::vector<double> pose;   // the placement the edits' coordinates assume (pose_numbers)
 };
 
 EditedScad read_edited_scad(const std::string& path);

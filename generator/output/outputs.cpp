@@ -184,7 +184,8 @@ std::vector<OutputFile> output_files(const Result& r, const Job& job, const std:
                      }});
     files.push_back({r.name + ".report.json", [&r, &job] { return report_json(r, job); }});
     files.push_back({r.name + ".scad", [&r, &job, version] {
-                         ScadMeta meta{version, r.input_sha256, absolute_path(job.input), r.name + ".model.stl"};
+                         ScadMeta meta{version, r.input_sha256, absolute_path(job.input), r.name + ".model.stl",
+                                       pose_numbers(r.placement)};
                          return emit_scad(r.supports, job, meta);
                      }});
     files.push_back({"clever_support.scad", [] { return scad_template_library(); }});

@@ -17,10 +17,8 @@ std::string num(double v) {
     if (s == "-0") s = "0";
     return s;
 }
-std::string pt(const Vec3& v) { return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]"; }
-std::string exact_pt(const Vec3& v) {
-    return "[" + scad_number(v.x) + ", " + scad_number(v.y) + ", " + scad_number(v.z) + "]";
-}
+std::string pt(const Vec3& v) { return fmt::format("[{}, {}, {}]", num(v.x), num(v.y), num(v.z)); }
+std::string exact_pt(const Vec3& v) { return fmt::format("[{}, {}, {}]", scad_number(v.x), scad_number(v.y), scad_number(v.z)); }
 std::string boolean(bool b) { return b ? "true" : "false"; }
 
 // `// why` lines, then `name = value; // [slider]` (the Customizer's range, when given).
@@ -137,6 +135,8 @@ std::string provenance(const Job& job, const ScadMeta& meta) {
     const Params& p = job.params;
     std::string defines;
     for (size_t i = 0; i < job.defines.size(); ++i) defines += (i ? ", " : "") + scad_string(job.defines[i]);
+    std::string pose;
+    for (size_t i = 0; i < meta.pose.size(); ++i) pose += (i ? ", " : "") + scad_number(meta.pose[i]);
     std::string s = "/* [Hidden] */\n// How this file was made: `clever-support regrow` reads these.\n";
     const std::pair<const char*, std::string> values[] = {
         {"cs_version", scad_string(meta.version)},
@@ -153,7 +153,8 @@ std::string provenance(const Job& job, const ScadMeta& meta) {
         {"cs_fit", job.fit ? scad_number(*job.fit) : std::string("0")},  // 0: not fitted
         {"cs_self_intersection_check", boolean(job.self_intersection_check)},
         {"cs_timings", boolean(job.timings)},
-        {"cs_model_file", scad_string(meta.model_file)}};
+        {"cs_model_file", scad_string(meta.model_file)},
+        {"cs_pose", "[" + pose + "]"}};  // scale, rotation rows, translation: what the edits' coordinates assume
     for (const auto& [name, value] : values) s += assignment("", name, value);
     return s + "\n";
 }

@@ -25,6 +25,7 @@ struct ScadMeta {
     std::string input_sha256;
     std::string input_path;  // absolute: where `regrow` finds the input again
     std::string model_file;  // imported, relative to the .scad
+    std::vector<double> pose;  // pose_numbers of the placement
 };
 
 std::string emit_scad(const Supports& supports, const Job& job, const ScadMeta& meta);

@@ -259,6 +259,13 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     return r;
 }
 
+std::vector<double> pose_numbers(const Placement& pl) {
+    std::vector<double> v{pl.scale};
+    for (const auto& row : pl.rotation) v.insert(v.end(), row, row + 3);
+    v.insert(v.end(), {pl.translation.x, pl.translation.y, pl.translation.z});
+    return v;
+}
+
 // SHA-256 (FIPS 180-4), for naming the input in reports and the SCAD header.
 std::string sha256_hex(std::string_view data) {
     static const std::uint32_t k[64] = {

@@ -103,6 +103,10 @@ std::vector<Sample> edited_samples(const ModelQuery& model, std::vector<Sample> 
 Mesh load_input(const std::string& path, const std::vector<std::string>& defines);
 bool is_scad_input(const std::string& path);
 
+// The placement as 13 numbers: scale, the rotation's rows, the translation. A user's edits are
+// in the placed model's coordinates: a regrow compares these to know whether they still fit.
+std::vector<double> pose_numbers(const Placement& placement);
+
 std::string sha256_hex(std::string_view bytes);
 std::string file_sha256(const std::string& path);
 
