@@ -115,18 +115,28 @@ function cs_size_strut(e, s, nodes, node_in, run, w, k, d_min, d_max, strength_l
                           cs_strength_width(run[0], run[1], strength_length)), d_min, d_max))
     [up, max(up, cs_eqn1(k, norm(b - a), cs_angle(a, b), d_min, d_max))];
 
-function cs_widths_step(w, nodes, struts, node_in, runs, k, d_min, d_max, strength_length) =
+// A strut's sizing level: the longest path (in struts) from a leaf down to its top node. Levels
+// settle in cheap integer steps; widths then take one pass per level, each strut sized once.
+function cs_levels_step(lv, struts, node_in) =
     [for (e = [0 : len(struts) - 1])
-        cs_size_strut(e, struts[e], nodes, node_in, runs[e], w, k, d_min, d_max, strength_length)];
-
-// Every strut into a node is sized before the node's own strut: widths flow down to a fixed point.
-function cs_strut_widths(nodes, node_in, struts, runs, k, d_min, d_max, strength_length) =
+        let(into = node_in[struts[e][0]]) len(into) == 0 ? 0 : max([for (f = into) lv[f]]) + 1];
+function cs_strut_levels(struts, node_in) =
     len(struts) == 0 ? [] :
-    let(start = [for (s = struts) [d_min, d_min]])
-    cs_last([for (s = [start, cs_widths_step(start, nodes, struts, node_in, runs, k, d_min, d_max, strength_length)];
-                  s[0] != s[1];
-                  s = [s[1], cs_widths_step(s[1], nodes, struts, node_in, runs, k, d_min, d_max, strength_length)]) s[1]],
-            start);
+    let(start = [for (s = struts) 0])
+    cs_last([for (s = [start, cs_levels_step(start, struts, node_in)]; s[0] != s[1];
+                  s = [s[1], cs_levels_step(s[1], struts, node_in)]) s[1]], start);
+
+// Level by level: every strut into a node is sized before the node's own strut.
+function cs_strut_widths(nodes, node_in, struts, runs, levels, k, d_min, d_max, strength_length) =
+    len(struts) == 0 ? [] :
+    let(last = max(levels))
+    [for (L = 0, w = [for (s = struts) [d_min, d_min]];
+          L <= last + 1;
+          w = [for (e = [0 : len(struts) - 1])
+                  levels[e] == L ? cs_size_strut(e, struts[e], nodes, node_in, runs[e], w, k, d_min, d_max, strength_length)
+                                 : w[e]],
+          L = L + 1)
+        if (L == last + 1) w][0];
 
 // Everything the geometry needs, derived from a tree record: [keep, node_in, out, runs, widths, room].
 function cs_derive(tree, omit, k, d_min, d_max, strength_length) =
@@ -142,7 +152,8 @@ function cs_derive(tree, omit, k, d_min, d_max, strength_length) =
         r = cs_runs(struts, lens, angles, node_in, out, bend),
         runs = [for (e = [0 : max(0, len(struts) - 1)]) if (e < len(struts))
                    [r[e][0] + r[e][2] - lens[e], max(r[e][1], r[e][3])]],
-        w = cs_strut_widths(nodes, node_in, struts, runs, k, d_min, d_max, strength_length),
+        w = cs_strut_widths(nodes, node_in, struts, runs, cs_strut_levels(struts, node_in), k, d_min, d_max,
+                            strength_length),
         room = n == 0 ? [] : [for (v = [0 : n - 1]) let(f = search(v, beds, 1, 0)) len(f) ? beds[f[0]][1] : -1])
     [keep, node_in, out, runs, w, room];
 
