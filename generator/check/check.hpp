@@ -1,20 +1,33 @@
 // Independent verification of a supported print, from meshes alone: the placed model and the
-// support STL (any tool's, as long as each support solid is a separate closed shell).
+// support STL (any tool's, as long as each support solid is a separate closed shell). It shares no
+// sampling, exemption or tolerance code with the generator; every rule is written down here and in
+// README "check".
 //
-//  coverage     every overhang point (sampled twice as densely as the generator samples, plus
-//               local minima) has a support contact within `reach` of it horizontally, on the
-//               same stretch of surface (no higher or lower than the steepest overhang rises over
-//               that reach, plus the contact gap), unless it hangs within touching_space of what is below;
-//               such resting points, and inside corners where the overhang meets a wall below
-//               it, anchor the overhang within `reach` of them as contacts do;
-//  penetration  no support solid beyond the tips (solids whose top or bottom is a contact, which
-//               touch the model by design) reaches into the model deeper than `penetration_tolerance`;
-//  grounding    every support solid rests on the bed, on the model (within the gap), or on
-//               another solid that is itself grounded;
-//  closed       every support solid is closed and outward-facing;
-//  angles       every solid's axis is within the critical angle of vertical;
-//  strength     the worst length-to-width ratio of any solid (reported; struts are sized by the
-//               strength rule, so this is informative).
+//  coverage     every overhang point the judge finds itself (judge_overhangs.hpp: faces, ridges,
+//               lowest points) has a contact within `reach` horizontally, on the same stretch of
+//               surface (no further up or down than the steepest overhang rises over that reach,
+//               plus the air gap and a layer). A contact is the top of a solid with the model right
+//               above it. `reach` defaults to 0.71 x the sampling distance: the largest gap a
+//               square lattice of contacts leaves on a flat overhang (half its diagonal).
+//               Exempt: points whose free fall to the model below is at most `bridge_height`
+//               (2 air gaps and a layer: nothing printable fits under them, the print rests on
+//               what is below). Anchors: such resting points, and the border of an overhang where
+//               a printable face goes down from it (a wall below carries that edge), cover points
+//               within reach as contacts do. Reported: the largest gap from any overhang point to
+//               its nearest contact or anchor, where it is, and the area beyond reach.
+//  air gap      every contact's gap (the smallest vertical distance from its top to the model) is
+//               at least `gap - gap_tolerance`; a solid fused to the print fails.
+//  penetration  every solid, tips included, is sampled over its faces; no point lies inside the
+//               model deeper than `penetration_tolerance` (default half the air gap). Only a
+//               contact end (the last `contact_depth` of a solid whose top touches the model from
+//               below or whose bottom stands on it) may reach `contact_depth` into the model: a
+//               square end on a slope of up to 45 degrees does.
+//  grounding    every solid rests on the bed, on the model (within the gap), or on another solid
+//               that is itself grounded; a solid whose bottom lies inside the model is reported
+//               as buried, not only as resting on nothing.
+//  closed       every solid is closed and outward-facing.
+//  angles       every solid's axis is within the critical angle of vertical.
+//  strength     the worst length-to-width ratio of any solid (informative).
 #pragma once
 
 #include <string>
@@ -26,33 +39,61 @@
 namespace cs {
 
 struct CheckOptions {
-    double reach = 0;                    // 0: the sampling distance
-    double penetration_tolerance = 0.25;  // mm
-    double angle_tolerance = 0.5;         // degrees
+    double reach = 0;                   // mm; 0: kLatticeReach x the sampling distance
+    double penetration_tolerance = -1;  // mm; < 0: half the air gap
+    double gap_tolerance = 0.05;        // mm an air gap may fall short of p.gap (slicers round to 0.01)
+    double angle_tolerance = 0.5;       // degrees
+    double spacing = 0;                 // mm between the judge's overhang points; 0: min(0.5, reach / 3)
+
+    // Half the diagonal of a unit square, rounded up: the farthest a point of a flat overhang is
+    // from the nearest lattice contact.
+    static constexpr double kLatticeReach = 0.71;
+};
+
+// One thing that failed, with where it is.
+struct Flag {
+    std::string what;
+    Vec3 at;
 };
 
 struct CheckResult {
-    std::size_t overhang_points = 0, covered = 0, exempt = 0;  // exempt: within touching space
-    std::vector<Vec3> uncovered;  // first few, for the message
+    // coverage
+    std::size_t overhang_points = 0, covered = 0, exempt = 0;
+    std::size_t face_points = 0, ridge_points = 0, lowest_points = 0;
+    std::size_t contacts = 0;
+    double reach = 0;
+    double largest_gap = 0;  // farthest any overhang point is from its nearest contact or anchor
+    Vec3 largest_gap_at;
+    double uncovered_area = 0;  // mm^2 of overhang beyond reach
+    std::vector<Vec3> uncovered;  // first few
+    // air gap
+    double min_air_gap = INFINITY;
+    Vec3 min_air_gap_at;
+    std::size_t fused_contacts = 0;
+    // solids
     std::size_t bodies = 0, open_bodies = 0, inward_bodies = 0;
-    std::size_t penetrating_bodies = 0;
-    std::vector<std::pair<Vec3, Vec3>> flagged;  // first few failing solids: (bottom, top) centres
+    std::size_t penetrating_bodies = 0, buried_bottoms = 0;
     double max_penetration = 0;
+    Vec3 max_penetration_at;
     std::size_t ungrounded_bodies = 0;
     std::size_t steep_bodies = 0;
     double max_angle = 0;
     double worst_length_to_width = 0;
     bool model_closed = true;  // penetration is only judged inside a closed model
+    std::vector<Flag> flagged;  // first few failures of the solid checks, with places
 
     bool coverage_ok() const { return covered + exempt == overhang_points; }
+    bool gap_ok() const { return fused_contacts == 0; }
     bool ok() const {
-        return coverage_ok() && open_bodies == 0 && inward_bodies == 0 && penetrating_bodies == 0 &&
-               ungrounded_bodies == 0 && steep_bodies == 0;
+        return coverage_ok() && gap_ok() && open_bodies == 0 && inward_bodies == 0 && penetrating_bodies == 0 &&
+               buried_bottoms == 0 && ungrounded_bodies == 0 && steep_bodies == 0;
     }
     std::string summary() const;
     std::string json() const;
 };
 
+// `p` gives the critical angle, the air gap, the layer height, the tip diameter and the sampling
+// distance the supports were made for (the user's settings, not the generator's decisions).
 CheckResult check_supports(const Mesh& model, const Mesh& supports, const Params& p, const CheckOptions& o);
 
 // Splits a mesh into its shells: faces connected across edges shared by exactly two faces, after

@@ -278,8 +278,13 @@ int main(int argc, char** argv) {
     ParamFlags chk;
     check->add_option("--model", check_model, "Placed model STL")->required();
     check->add_option("--supports", check_supports_path, "Support STL (separate closed solids)")->required();
-    check->add_option("--reach", copt.reach, "Max distance from an overhang point to a contact, mm (default: sampling)");
-    check->add_option("--penetration-tolerance", copt.penetration_tolerance, "mm")->capture_default_str();
+    check->add_option("--reach", copt.reach,
+                      "Max distance from an overhang point to a contact, mm (default: 0.71 x sampling, the "
+                      "largest gap a square lattice of contacts leaves)");
+    check->add_option("--penetration-tolerance", copt.penetration_tolerance,
+                      "How deep a solid may reach into the model outside its contact ends, mm (default: half the gap)");
+    check->add_option("--gap-tolerance", copt.gap_tolerance, "How far an air gap may fall short of --gap, mm")
+        ->capture_default_str();
     check->add_flag("--json", check_json, "Print results as JSON");
     chk.add_to(*check);
 

@@ -215,7 +215,10 @@ const std::string& scad_template_library() {
 std::string emit_scad(const Supports& sp, const Job& job, const ScadMeta& meta) {
     std::string s = header(sp, job, meta);
     s += customizer(job.params);
-    s += manual_edits(job.edits);
+    ManualEdits edits = job.edits;
+    // Display only: a highlight that no longer names a strut of this tree is not carried over.
+    if (edits.highlight_strut >= static_cast<int>(sp.grown_struts.size())) edits.highlight_strut = -1;
+    s += manual_edits(edits);
     s += regrow_section(job.params);
     s += provenance(job, meta);
     s += tree_data(sp, job.params);

@@ -66,6 +66,12 @@ bool ModelQuery::segment_hits(const Vec3& a, const Vec3& b) const {
     return impl_->tree.do_intersect(K::Segment_3(pt(a), pt(b)));
 }
 
+bool ModelQuery::triangle_hits(const Vec3& a, const Vec3& b, const Vec3& c) const {
+    Triangle3 t(pt(a), pt(b), pt(c));
+    if (t.is_degenerate()) return a == b ? segment_hits(a, c) : segment_hits(a, b);
+    return impl_->tree.do_intersect(t);
+}
+
 double ModelQuery::squared_distance(const Vec3& p) const { return impl_->tree.squared_distance(pt(p)); }
 
 Vec3 ModelQuery::closest_point(const Vec3& p) const { return vec(impl_->tree.closest_point(pt(p))); }

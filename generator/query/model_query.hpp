@@ -29,6 +29,8 @@ public:
     std::optional<RayHit> first_hit(const Vec3& origin, const Vec3& dir) const;
     // Does the closed segment a-b touch the model?
     bool segment_hits(const Vec3& a, const Vec3& b) const;
+    // Does the triangle abc touch the model's surface?
+    bool triangle_hits(const Vec3& a, const Vec3& b, const Vec3& c) const;
     double squared_distance(const Vec3& p) const;
     Vec3 closest_point(const Vec3& p) const;
     // Inside the solid, by the majority of three rays' winding numbers (sound for closed meshes,

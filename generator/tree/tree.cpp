@@ -11,6 +11,11 @@ namespace cs {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
+// A tip under a slope or beside a wall is lowered until its corners clear the model by the gap:
+// by at most this share of its length (it must still taper up to the overhang), refined over a
+// few rounds because a lowered corner sees other geometry.
+constexpr double kTipMaxLowering = 0.8;
+constexpr int kTipLoweringRounds = 10;
 
 // Unit directions of the cone fan: the axis, then rings at half and 95% of the critical angle.
 // 95% keeps a contact tip (which sits above its model point) inside the cone.
@@ -174,9 +179,9 @@ private:
                 continue;
             }
             if (free < 2 * tip) {
-                Vec3 bottom{s.p.x, s.p.y, hit ? below + p_.gap : 0.0};
-                if (sweep_meets_boxes(s.p, bottom, p_.d_min, 0, p_.keep_out)) continue;  // a user's blocker
-                t_.pillars.push_back({s.p - Vec3{0, 0, p_.gap}, bottom, hit.has_value()});
+                Pillar pillar = pillar_under(s.p, below, hit.has_value());
+                if (sweep_meets_boxes(pillar.top, pillar.bottom, p_.d_min, 0, p_.keep_out)) continue;  // a user's blocker
+                t_.pillars.push_back(pillar);
                 ++t_.stats.pillars;
                 continue;
             }
@@ -192,18 +197,72 @@ private:
         }
     }
 
-    // The top of a tip: one gap below the sample, lowered further where a corner of its square top
-    // would come closer to a sloping overhang than the gap.
-    Vec3 tip_top(const Vec3& sample) const {
+    // The top of a tip: one gap below the sample, lowered until every corner of its square top is
+    // at least a gap below the model (under a rising slope or in a crease a corner would otherwise
+    // touch the print), by at most kTipMaxLowering of its length so it stays a tip. A corner that
+    // lowering cannot clear lies beside a wall: the top then moves away from it, by at most half
+    // the tip's width (the wall below carries the overhang next to it).
+    // A pillar's top (`floor`: its bottom) comes no lower than a layer above its bottom.
+    Vec3 tip_top(const Vec3& sample, std::optional<double> floor = std::nullopt) const {
         Vec3 top = sample - Vec3{0, 0, p_.gap};
         const double h = 0.5 * p_.tip_diameter;
-        double lower = 0;
-        for (auto [sx, sy] : {std::pair{1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
-            Vec3 corner = sample + Vec3{sx * h, sy * h, -p_.gap - 1.0};
-            auto hit = model_.first_hit(corner, {0, 0, 1});
-            if (hit) lower = std::max(lower, p_.gap - (hit->point.z - top.z));
+        const double lowest = floor ? std::min(top.z, std::max(top.z - kTipMaxLowering * p_.tip_length,
+                                                               *floor + p_.layer_height))
+                                    : top.z - kTipMaxLowering * p_.tip_length;
+        double moved = 0;
+        for (int round = 0; round < kTipLoweringRounds; ++round) {
+            double lower = 0;
+            Vec3 away;
+            for (auto [sx, sy] : {std::pair{0, 0}, {1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
+                double need = p_.gap - room_above(top + Vec3{sx * h, sy * h, 0});
+                if (need <= 1e-9) continue;
+                lower = std::max(lower, need);
+                away = away - Vec3{double(sx), double(sy), 0};
+            }
+            if (lower <= 1e-9) break;
+            if (top.z - lower >= lowest || norm(away) == 0 || moved >= h) {
+                top.z = std::max(lowest, top.z - lower);
+                continue;
+            }
+            const double step = std::min(0.5 * h, h - moved);
+            top = top + normalized(away) * step;
+            moved += step;
         }
-        return top - Vec3{0, 0, std::min(lower, contact_tolerance(p_) - p_.gap - 0.05)};
+        return top;
+    }
+
+    // A short vertical pillar under the sample, standing on the bed or a gap above the model at
+    // `below`. Its top clears the model as a tip's does; where that moves the top aside, the whole
+    // pillar moves with it (it is too short to lean) and stands on what is below its new place.
+    // Where moving it leaves less than a layer of pillar, it stays as it was.
+    Pillar pillar_under(const Vec3& sample, double below, bool on_model) const {
+        const Pillar plain{sample - Vec3{0, 0, p_.gap}, {sample.x, sample.y, on_model ? below + p_.gap : 0.0}, on_model};
+        Vec3 top = tip_top(sample, plain.bottom.z);
+        bool moved_on_model = on_model;
+        double foot = on_model ? below : 0.0;
+        if (horizontal_distance(top, sample) > 1e-9) {
+            auto hit = model_.first_hit(Vec3{top.x, top.y, sample.z - 1e-4}, {0, 0, -1});
+            moved_on_model = hit.has_value();
+            foot = hit ? hit->point.z : 0.0;
+        }
+        Vec3 bottom{top.x, top.y, moved_on_model ? foot + p_.gap : 0.0};
+        if (top.z - bottom.z < p_.layer_height) return plain;
+        return {top, bottom, moved_on_model};
+    }
+
+    // Vertical room from p up to the model; minus the depth when p is inside it. A ray running
+    // along a vertical face (a tip right under a rim) goes on past it.
+    double room_above(const Vec3& p) const {
+        if (model_.inside(p)) return -std::sqrt(model_.squared_distance(p));
+        Vec3 from = p;
+        for (int grazes = 0; grazes < 8; ++grazes) {
+            auto hit = model_.first_hit(from, {0, 0, 1});
+            if (!hit) return INFINITY;
+            const Vec3 n = face_normal_unnormalized(model_.mesh(), model_.mesh().faces[hit->face]);
+            if (std::abs(n.z) > 1e-9 * norm(n)) return hit->point.z - p.z;
+            from = hit->point + Vec3{0, 0, 1e-6};
+        }
+        return INFINITY;
     }
 
     // Can a strut of width w leave point a at all: is a short strut along some fan direction

@@ -115,10 +115,12 @@ TEST(ScadEdit, BlockerKeepsEverySupportSolidOutAndTheRestPassesCheck) {
     Mesh supports = read_mesh(blocked.file(".supports.stl"));
     ASSERT_FALSE(supports.faces.empty());
     EXPECT_FALSE(mesh_enters_box(supports, blocker));
-    // Elsewhere: the T without the blocked half of its plate is fully supported and sound.
-    CellGrid g({-10, -2, 2, 10}, {-5, -2, 2, 5}, {0, 10, 12});
+    // Elsewhere: the T without the blocked part of its plate is fully supported and sound. The
+    // blocker takes the samples at x = -2.5; their neighbours at x = 0 cover what is within check's
+    // reach of them (0.71 of the sampling, 1.77 mm, diagonally too), so the rest starts at x = -1.
+    CellGrid g({-10, -2, -1, 2, 10}, {-5, -2, 2, 5}, {0, 10, 12});
     g.fill({-2, -2, 0}, {2, 2, 10});
-    g.fill({-2, -5, 10}, {10, 5, 12});
+    g.fill({-1, -5, 10}, {10, 5, 12});
     std::string rest = blocked.dir / "rest.stl";
     write_stl(rest, g.mesh());
     auto c = check_of(rest, blocked.file(".supports.stl"));

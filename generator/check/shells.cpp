@@ -1,0 +1,156 @@
+// Support solids from a support mesh: weld, split into closed shells, judge closedness.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <unordered_map>
+
+#include "check/check.hpp"
+
+namespace cs {
+
+bool is_closed_and_consistent(const Mesh& m) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+    for (const auto& f : m.faces)
+        for (int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
+    for (const auto& [e, n] : directed) {
+        if (n != 1) return false;
+        auto it = directed.find({e.second, e.first});
+        if (it == directed.end() || it->second != 1) return false;
+    }
+    return true;
+}
+
+bool is_watertight(const Mesh& m) {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+    for (const auto& f : m.faces)
+        for (int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
+    for (const auto& [e, n] : directed) {
+        auto it = directed.find({e.second, e.first});
+        if (it == directed.end() || it->second != n) return false;
+    }
+    return true;
+}
+
+Mesh weld(const Mesh& raw) {
+    std::map<std::tuple<double, double, double>, std::uint32_t> index;
+    Mesh m;
+    std::vector<std::uint32_t> remap(raw.vertices.size());
+    for (size_t i = 0; i < raw.vertices.size(); ++i) {
+        auto key = std::make_tuple(raw.vertices[i].x, raw.vertices[i].y, raw.vertices[i].z);
+        auto [it, fresh] = index.emplace(key, static_cast<std::uint32_t>(m.vertices.size()));
+        if (fresh) m.vertices.push_back(raw.vertices[i]);
+        remap[i] = it->second;
+    }
+    for (const auto& f : raw.faces) m.faces.push_back({remap[f[0]], remap[f[1]], remap[f[2]]});
+    return m;
+}
+
+std::vector<Mesh> split_shells(const Mesh& raw) {
+    Mesh m = weld(raw);
+    // Faces join across their edges. An edge that exactly two faces share joins them. Where
+    // solids touch (two struts ending at one bed point, bodies meeting end to end) an edge has
+    // more faces; there each face joins its neighbour on its solid's inner side: turning about the
+    // edge from a face into the material behind it, the first face met bounds the same solid.
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::uint32_t>> edge_faces;
+    for (std::uint32_t fi = 0; fi < m.faces.size(); ++fi)
+        for (int k = 0; k < 3; ++k) edge_faces[std::minmax(m.faces[fi][k], m.faces[fi][(k + 1) % 3])].push_back(fi);
+    std::vector<int> parent(m.faces.size());
+    for (size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+    auto find = [&](int x) {
+        while (parent[x] != x) x = parent[x] = parent[parent[x]];
+        return x;
+    };
+    auto unite = [&](int a, int b) {
+        a = find(a), b = find(b);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    };
+    for (const auto& [edge, fs] : edge_faces) {
+        if (fs.size() == 2) {
+            unite(fs[0], fs[1]);
+            continue;
+        }
+        if (fs.size() < 2) continue;
+        const Vec3 &a = m.vertices[edge.first], &b = m.vertices[edge.second];
+        const Vec3 e = normalized(b - a);
+        struct Around {
+            double angle;
+            bool forward;  // the face runs a -> b
+            std::uint32_t face;
+        };
+        std::vector<Around> around;
+        Vec3 ref{};
+        for (auto fi : fs) {
+            const auto& f = m.faces[fi];
+            int k = 0;
+            while (std::pair<std::uint32_t, std::uint32_t>(std::minmax(f[k], f[(k + 1) % 3])) != edge) ++k;
+            bool forward = f[k] == edge.first;
+            Vec3 c = m.vertices[f[(k + 2) % 3]] - a;
+            Vec3 v = c - e * dot(c, e);  // from the edge towards the face's third corner
+            if (norm(v) == 0) continue;
+            v = normalized(v);
+            if (around.empty()) ref = v;
+            around.push_back({std::atan2(dot(cross(ref, v), e), dot(ref, v)), forward, fi});
+        }
+        std::sort(around.begin(), around.end(), [](const Around& x, const Around& y) {
+            return x.angle != y.angle ? x.angle < y.angle : x.face < y.face;
+        });
+        // Faces at one angle lie on each other (two struts ending on one bed point share their
+        // bottom ring and sides). A face running a -> b has its outside towards increasing angle
+        // about e, so its solid lies at decreasing angle: its partner runs b -> a in the nearest
+        // group of faces below its angle. Within tied groups, faces pair in order of their numbers:
+        // a solid's faces come together in the file.
+        std::vector<std::vector<const Around*>> groups;
+        for (size_t i = 0; i < around.size(); ++i) {
+            if (i == 0 || around[i].angle - around[i - 1].angle > 1e-9) groups.emplace_back();
+            groups.back().push_back(&around[i]);
+        }
+        if (groups.size() > 1 && around.back().angle - around.front().angle > 2 * std::numbers::pi - 1e-9) {
+            // The first and last groups are the same angle across +-pi.
+            for (auto* x : groups.back()) groups.front().push_back(x);
+            groups.pop_back();
+        }
+        // Each group's faces running a -> b pair with the faces running b -> a of the nearest
+        // group below that has any, in order of face number (the k-th with the k-th).
+        const size_t ng = groups.size();
+        for (size_t gi = 0; gi < ng; ++gi) {
+            std::vector<std::uint32_t> fwd;
+            for (const Around* f : groups[gi])
+                if (f->forward) fwd.push_back(f->face);
+            if (fwd.empty()) continue;
+            for (size_t step = 1; step <= ng; ++step) {
+                std::vector<std::uint32_t> back;
+                for (const Around* b : groups[(gi + ng - step % ng) % ng])
+                    if (!b->forward) back.push_back(b->face);
+                if (back.empty()) continue;
+                for (size_t k = 0; k < std::min(fwd.size(), back.size()); ++k)
+                    unite(static_cast<int>(fwd[k]), static_cast<int>(back[k]));
+                break;
+            }
+        }
+    }
+    std::vector<int> comp(m.faces.size(), -1);
+    std::map<int, int> root_id;
+    int count = 0;
+    for (size_t fi = 0; fi < m.faces.size(); ++fi) {
+        auto [it, fresh] = root_id.emplace(find(static_cast<int>(fi)), count);
+        if (fresh) ++count;
+        comp[fi] = it->second;
+    }
+    std::vector<Mesh> shells(count);
+    std::vector<std::unordered_map<std::uint32_t, std::uint32_t>> local(count);
+    for (size_t fi = 0; fi < m.faces.size(); ++fi) {
+        auto& s = shells[comp[fi]];
+        auto& l = local[comp[fi]];
+        Triangle t;
+        for (int k = 0; k < 3; ++k) {
+            auto [it, fresh] = l.emplace(m.faces[fi][k], static_cast<std::uint32_t>(s.vertices.size()));
+            if (fresh) s.vertices.push_back(m.vertices[m.faces[fi][k]]);
+            t[k] = it->second;
+        }
+        s.faces.push_back(t);
+    }
+    return shells;
+}
+
+}  // namespace cs
