@@ -19,6 +19,8 @@ constexpr std::size_t kMaxFlags = 12;
 constexpr double kOnBed = 0.05;
 // A face of a solid is probed down to pieces this small (mm): finer than any tolerance judged.
 constexpr double kProbeResolution = 0.05;
+// A point this close to the model's surface lies on it (rounding in meshes written as float STL).
+constexpr double kOnSurface = 1e-3;
 
 // Every tolerance the judge uses, from the user's settings, each with its reason.
 struct Tolerances {
@@ -95,9 +97,11 @@ bool contains(const Shell& s, const Vec3& p, double tol) {
 
 // Vertical distance from p up to the model; negative (minus the depth) when p is inside it.
 // A vertical face is never above a point: a ray that runs along one (a tip exactly under a rim)
-// goes on past it.
+// goes on past it. A point on the surface (a corner touching a wall beside it) is judged by the
+// model above it; how far a solid reaches sideways into the model is the penetration check's.
 double gap_up(const ModelQuery& q, const Vec3& p) {
-    if (q.inside(p)) return -std::sqrt(q.squared_distance(p));
+    const double d = std::sqrt(q.squared_distance(p));
+    if (d > kOnSurface && q.inside(p)) return -d;
     Vec3 from = p;
     for (int grazes = 0; grazes < 8; ++grazes) {
         auto hit = q.first_hit(from, {0, 0, 1});
@@ -351,6 +355,7 @@ void check_coverage(const Mesh& model, const ModelQuery& q, const std::vector<Sh
             continue;
         }
         r.uncovered_area += x->area;
+        if (std::getenv("CS_CHECK_DEBUG")) std::fprintf(stderr, "UNCOVERED kind=%d at %.2f %.2f %.2f d=%.2f\n", int(x->kind), x->p.x, x->p.y, x->p.z, d);
         if (r.uncovered.size() < 10) r.uncovered.push_back(x->p);
     }
 }

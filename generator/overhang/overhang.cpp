@@ -115,6 +115,24 @@ void rasterize_triangle(const Vec3& a0, const Vec3& b0, const Vec3& c0, double s
     }
 }
 
+// A keel: two downward-facing faces that both rise away from their shared edge (the edge is the
+// lowest line of its cross-section), the edge itself flatter than the critical angle. Such a line
+// hangs whatever the faces' own slopes: nothing below it grows up to it.
+static bool hanging_keel(const Mesh& m, std::uint32_t f0, std::uint32_t f1, std::uint32_t a, std::uint32_t b,
+                         const Vec3& n0, const Vec3& n1, double sin_c) {
+    if (!(n0.z < 0 && n1.z < 0)) return false;
+    const Vec3 e = m.vertices[b] - m.vertices[a];
+    const double cos_c = std::sqrt(std::max(0.0, 1 - sin_c * sin_c));
+    if (norm(e) == 0 || std::abs(e.z) / norm(e) >= cos_c) return false;
+    auto rises = [&](std::uint32_t fi) {
+        const auto& f = m.faces[fi];
+        std::uint32_t far = f[0] != a && f[0] != b ? f[0] : (f[1] != a && f[1] != b ? f[1] : f[2]);
+        const Vec3 w = m.vertices[far] - m.vertices[a];
+        return (w - e * (dot(w, e) / dot(e, e))).z > 0;
+    };
+    return rises(f0) && rises(f1);
+}
+
 OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o) {
     OverhangSamples res;
     const double s = o.sampling_distance;
@@ -166,7 +184,7 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o) {
         if (fs.size() == 2 && over == 0) {
             Vec3 n1 = normalized(face_normal_unnormalized(m, m.faces[fs[0]]));
             Vec3 n2 = normalized(face_normal_unnormalized(m, m.faces[fs[1]]));
-            ridge = normalized(n1 + n2).z < -sin_c && convex();
+            ridge = (normalized(n1 + n2).z < -sin_c && convex()) || hanging_keel(m, fs[0], fs[1], a, b, n1, n2, sin_c);
         }
         if (!(border || open_border || ridge)) continue;
         res.ridge_edges += ridge;

@@ -16,6 +16,8 @@ constexpr double kDeg = M_PI / 180.0;
 // few rounds because a lowered corner sees other geometry.
 constexpr double kTipMaxLowering = 0.8;
 constexpr int kTipLoweringRounds = 10;
+// A tip moved off a wall leans at most this share of the critical angle's slope.
+constexpr double kTipLean = 0.9;
 
 // Unit directions of the cone fan: the axis, then rings at half and 95% of the critical angle.
 // 95% keeps a contact tip (which sits above its model point) inside the cone.
@@ -186,7 +188,7 @@ private:
                 continue;
             }
             int leaf = add_node(leaf_position(s.p - Vec3{0, 0, tip}), NodeKind::Leaf, s.p, p_.d_min);
-            t_.nodes[leaf].tip = tip_top(s.p);
+            t_.nodes[leaf].tip = tip_top(s.p, std::nullopt, &t_.nodes[leaf].p);
             // A leaf in a crevice that no strut can leave is dropped now, before others merge into it.
             if (!can_escape(leaf)) {
                 t_.nodes[leaf].kind = NodeKind::Dropped;
@@ -203,12 +205,16 @@ private:
     // lowering cannot clear lies beside a wall: the top then moves away from it, by at most half
     // the tip's width (the wall below carries the overhang next to it).
     // A pillar's top (`floor`: its bottom) comes no lower than a layer above its bottom.
-    Vec3 tip_top(const Vec3& sample, std::optional<double> floor = std::nullopt) const {
+    // A leaf's tip (`base`: the leaf it stands on) leans no further than the cones allow.
+    Vec3 tip_top(const Vec3& sample, std::optional<double> floor = std::nullopt, const Vec3* base = nullptr) const {
         Vec3 top = sample - Vec3{0, 0, p_.gap};
         const double h = 0.5 * p_.tip_diameter;
-        const double lowest = floor ? std::min(top.z, std::max(top.z - kTipMaxLowering * p_.tip_length,
-                                                               *floor + p_.layer_height))
-                                    : top.z - kTipMaxLowering * p_.tip_length;
+        double lowest = top.z - kTipMaxLowering * p_.tip_length;
+        if (floor) lowest = std::min(top.z, std::max(lowest, *floor + p_.layer_height));
+        // No lower than the lean allows over the leaf it stands on.
+        auto lowest_at = [&](const Vec3& t) {
+            return base ? std::max(lowest, base->z + horizontal_distance(t, *base) / (kTipLean * tan_c_)) : lowest;
+        };
         double moved = 0;
         for (int round = 0; round < kTipLoweringRounds; ++round) {
             double lower = 0;
@@ -220,12 +226,18 @@ private:
                 away = away - Vec3{double(sx), double(sy), 0};
             }
             if (lower <= 1e-9) break;
-            if (top.z - lower >= lowest || norm(away) == 0 || moved >= h) {
-                top.z = std::max(lowest, top.z - lower);
+            const double floor_here = std::min(top.z, lowest_at(top));
+            if (top.z - lower >= floor_here || norm(away) == 0 || moved >= h) {
+                top.z = std::max(floor_here, top.z - lower);
                 continue;
             }
             const double step = std::min(0.5 * h, h - moved);
-            top = top + normalized(away) * step;
+            const Vec3 to = top + normalized(away) * step;
+            if (to.z < lowest_at(to)) {
+                top.z = floor_here;
+                continue;
+            }
+            top = to;
             moved += step;
         }
         return top;
@@ -253,7 +265,8 @@ private:
     // Vertical room from p up to the model; minus the depth when p is inside it. A ray running
     // along a vertical face (a tip right under a rim) goes on past it.
     double room_above(const Vec3& p) const {
-        if (model_.inside(p)) return -std::sqrt(model_.squared_distance(p));
+        const double d = std::sqrt(model_.squared_distance(p));
+        if (d > 1e-3 && model_.inside(p)) return -d;  // on the surface: judged by what is above
         Vec3 from = p;
         for (int grazes = 0; grazes < 8; ++grazes) {
             auto hit = model_.first_hit(from, {0, 0, 1});

@@ -3,6 +3,7 @@
 // overlapping shells): only faces between a filled and an empty cell are emitted.
 #pragma once
 
+#include <cmath>
 #include <map>
 #include <tuple>
 #include <vector>
@@ -73,6 +74,28 @@ inline Mesh t_shape() {
     g.fill({-2, -2, 0}, {2, 2, 10});
     g.fill({-10, -5, 10}, {10, 5, 12});
     return g.mesh();
+}
+
+// A table: a 40 x 30 x 2 top (z 10..12) on one 4 x 4 leg at the centre.
+inline Mesh table_shape() {
+    CellGrid g({-20, -2, 2, 20}, {-15, -2, 2, 15}, {0, 10, 12});
+    g.fill({-2, -2, 0}, {2, 2, 10});
+    g.fill({-20, -15, 10}, {20, 15, 12});
+    return g.mesh();
+}
+
+// A hanging keel: a 9 mm prism along x whose two faces lean 30 degrees from vertical (steep
+// enough to print on their own) down to a level ridge at z = 10, held at its end by a post from
+// the bed. Only the ridge line hangs.
+inline Mesh keel_shape() {
+    const double zr = 10, zt = 10 + 3 / std::tan(30 * 3.14159265358979 / 180), x0 = -4.5, x1 = 4.5;
+    Mesh m;
+    m.vertices = {{x0, 0, zr}, {x1, 0, zr}, {x0, -3, zt}, {x1, -3, zt}, {x0, 3, zt}, {x1, 3, zt}};
+    m.faces = {{0, 3, 2}, {0, 1, 3}, {0, 5, 1}, {0, 4, 5}, {2, 5, 4}, {2, 3, 5}, {0, 2, 4}, {1, 5, 3}};  // outward
+    CellGrid post({x0 - 2, x0}, {-3, 3}, {0, zt});
+    post.fill({x0 - 2, -3, 0}, {x0, 3, zt});
+    append(m, post.mesh());
+    return m;
 }
 
 // A bridge: two 4 x 6 pillars (x -12..-8 and 8..12) from the bed to z = 8 under a 24 x 6 x 2 deck.

@@ -114,7 +114,7 @@ TEST(Check, SupportBoxPushedIntoTheModelFailsPenetration) {
     Mesh bad = box({5, -1, 0}, {7, 1, 11});
     CheckResult r = f.check(with(f.supports, bad));
     EXPECT_EQ(r.penetrating_bodies, 1u) << r.summary();
-    EXPECT_GT(r.max_penetration, CheckOptions{}.penetration_tolerance);
+    EXPECT_GT(r.max_penetration, 0.5 * f.p.gap);  // the default tolerance: half the air gap
     EXPECT_FALSE(r.ok());
     EXPECT_TRUE(r.coverage_ok());
     EXPECT_EQ(r.ungrounded_bodies, 0u);
@@ -250,4 +250,164 @@ TEST(Check, TipOnTheRimOfAStepIsGrounded) {
     off.bottom.x = off.top.x = 11;
     CheckResult r2 = check_supports(model, body_mesh(off, p.wall_thickness), p, {});
     EXPECT_EQ(r2.ungrounded_bodies, 1u) << r2.summary();
+}
+
+// ---- Planted defects (issue: a strict, independent check). Each is planted into a good output
+// for a 40 x 30 table on one leg, and check must fail with a message that names the place.
+namespace {
+
+struct Table {
+    Params p;
+    Mesh model = cs::test::table_shape();
+    std::vector<Body> bodies = pipeline_bodies(model, p);
+    CheckResult check(const std::vector<Body>& b) const {
+        return check_supports(model, bodies_mesh(b, p.wall_thickness), p, {});
+    }
+    // Every body but the tips whose top the predicate picks.
+    template <typename Pick>
+    std::vector<Body> without_tips(Pick pick) const {
+        std::vector<Body> kept;
+        for (const auto& b : bodies)
+            if (!(b.kind == BodyKind::Tip && pick(b.top))) kept.push_back(b);
+        return kept;
+    }
+    // The tip whose top is nearest to (x, y).
+    const Body& tip_near(double x, double y) const {
+        const Body* best = nullptr;
+        for (const auto& b : bodies)
+            if (b.kind == BodyKind::Tip && (!best || horizontal_distance(b.top, {x, y, 0}) < horizontal_distance(best->top, {x, y, 0})))
+                best = &b;
+        return *best;
+    }
+};
+
+bool names_a_place(const std::string& summary, const std::string& what) {
+    return summary.find(what) != std::string::npos && summary.find(" at (") != std::string::npos;
+}
+
+}  // namespace
+
+TEST(CheckPlanted, TheGoodTablePassesEveryCheck) {
+    Table t;
+    CheckResult r = t.check(t.bodies);
+    EXPECT_TRUE(r.ok()) << r.summary();
+    EXPECT_GT(r.contacts, 100u);
+    EXPECT_LE(r.largest_gap, r.reach);
+    EXPECT_NEAR(r.reach, 0.71 * t.p.sampling_distance, 1e-9);
+    EXPECT_GE(r.min_air_gap, t.p.gap - 0.05) << r.summary();
+}
+
+TEST(CheckPlanted, OneMissingTipInTheMiddleFails) {
+    Table t;
+    const Vec3 gone = t.tip_near(10, 7).top;
+    CheckResult r = t.check(t.without_tips([&](const Vec3& top) { return top == gone; }));
+    EXPECT_FALSE(r.coverage_ok()) << r.summary();
+    EXPECT_GT(r.largest_gap, r.reach);
+    EXPECT_LT(horizontal_distance(r.largest_gap_at, gone), t.p.sampling_distance) << "the gap is where the tip was";
+    EXPECT_GT(r.uncovered_area, 0);
+    EXPECT_TRUE(names_a_place(r.summary(), "uncovered at"));
+}
+
+TEST(CheckPlanted, OneMissingTipOnTheOuterEdgeFails) {
+    Table t;
+    const Vec3 gone = t.tip_near(20, 7).top;
+    ASSERT_GT(gone.x, 18.5) << "a tip on the rim";
+    CheckResult r = t.check(t.without_tips([&](const Vec3& top) { return top == gone; }));
+    EXPECT_FALSE(r.coverage_ok()) << r.summary();
+    EXPECT_LT(horizontal_distance(r.largest_gap_at, gone), t.p.sampling_distance);
+}
+
+TEST(CheckPlanted, ACheckerboardOfMissingTipsFails) {
+    Table t;
+    const double s = t.p.sampling_distance;
+    auto black = [&](const Vec3& top) {
+        return (static_cast<long>(std::floor(top.x / s + 0.5)) + static_cast<long>(std::floor(top.y / s + 0.5))) % 2 == 0;
+    };
+    CheckResult r = t.check(t.without_tips(black));
+    EXPECT_FALSE(r.coverage_ok()) << r.summary();
+    EXPECT_GT(r.uncovered_area, 10.0) << r.summary();
+}
+
+TEST(CheckPlanted, AColumnBuriedInTheLegFailsThoughItsTopIsAContact) {
+    Table t;
+    auto with_column = t.bodies;
+    // 12 mm tall counting its tip: from the bed to a gap under the top, 1 mm into the leg's wall.
+    with_column.push_back({BodyKind::Strut, Profile::Square, {2.0, 0, 0}, {2.0, 0, 10 - t.p.gap}, 2.0, 2.0});
+    CheckResult r = t.check(with_column);
+    EXPECT_EQ(r.penetrating_bodies, 1u) << r.summary();
+    EXPECT_NEAR(r.max_penetration, 1.0, 0.1);
+    EXPECT_FALSE(r.ok());
+    EXPECT_TRUE(names_a_place(r.summary(), "too deep into the model"));
+}
+
+TEST(CheckPlanted, AFusedTipFailsTheAirGap) {
+    Table t;
+    auto fused = t.bodies;
+    const Vec3 at = t.tip_near(10, 7).top;
+    for (auto& b : fused)
+        if (b.kind == BodyKind::Tip && b.top == at) b.top.z += t.p.gap;  // touches the table top
+    CheckResult r = t.check(fused);
+    EXPECT_EQ(r.fused_contacts, 1u) << r.summary();
+    EXPECT_LT(r.min_air_gap, 0.01);
+    EXPECT_LT(horizontal_distance(r.min_air_gap_at, at), 1e-6);
+    EXPECT_FALSE(r.ok());
+    EXPECT_TRUE(names_a_place(r.summary(), "is fused to the model"));
+}
+
+TEST(CheckPlanted, ATipBuriedByItsBottomCornerFails) {
+    Table t;
+    auto buried = t.bodies;
+    // Under the top beside the leg: its top a gap below the table, its 1 mm bottom corner 0.66 mm
+    // inside the leg (x < 2).
+    buried.push_back({BodyKind::Tip, Profile::Square, {1.84, 0, 8.0}, {2.5, 0, 10 - t.p.gap}, 1.0, t.p.tip_diameter});
+    CheckResult r = t.check(buried);
+    EXPECT_GE(r.penetrating_bodies, 1u) << r.summary();
+    EXPECT_NEAR(r.max_penetration, 0.66, 0.1) << r.summary();
+    EXPECT_FALSE(r.ok());
+}
+
+TEST(CheckPlanted, ASolidStartingInsideTheModelIsReportedAsBuried) {
+    Table t;
+    auto buried = t.bodies;
+    buried.push_back({BodyKind::Strut, Profile::Square, {10, 10, 11}, {10, 10, 16}, 2.0, 2.0});
+    CheckResult r = t.check(buried);
+    EXPECT_EQ(r.buried_bottoms, 1u) << r.summary();
+    EXPECT_FALSE(r.ok());
+    EXPECT_TRUE(names_a_place(r.summary(), "starts inside the model"));
+}
+
+TEST(CheckPlanted, AnEmptySupportFileFailsForATableThatNeedsSupport) {
+    Table t;
+    CheckResult r = t.check({});
+    EXPECT_FALSE(r.coverage_ok());
+    EXPECT_EQ(r.contacts, 0u);
+    EXPECT_GT(r.uncovered_area, 1000.0) << r.summary();  // 40 x 30 less what the leg carries
+    EXPECT_TRUE(names_a_place(r.summary(), "uncovered at"));
+}
+
+// The judge finds a hanging ridge by itself: no face needs support, only the keel's line does.
+TEST(CheckPlanted, AnUnsupportedRidgeFailsAndTheGeneratorsSupportsPass) {
+    Params p;
+    Mesh keel = cs::test::keel_shape();
+    CheckResult empty = check_supports(keel, Mesh{}, p, {});
+    EXPECT_EQ(empty.face_points, 0u) << empty.summary();
+    EXPECT_GT(empty.ridge_points, 5u) << empty.summary();
+    EXPECT_FALSE(empty.coverage_ok()) << empty.summary();
+    for (const auto& u : empty.uncovered) EXPECT_NEAR(u.z, 10, 1e-6);
+    CheckResult built = check_supports(keel, bodies_mesh(pipeline_bodies(keel, p), p.wall_thickness), p, {});
+    EXPECT_TRUE(built.ok()) << built.summary();
+}
+
+// A point on the steep part of a slope (no overhang) needs nothing; the judge's lowest points of a
+// hanging cone do.
+TEST(CheckPlanted, JudgeFindsTheLowestPointOfAHangingCone) {
+    Params p;
+    Mesh m;  // a square pyramid pointing down, apex at z = 5, its sides 30 degrees from vertical
+    const double h = 2 / std::tan(30 * M_PI / 180);
+    m.vertices = {{0, 0, 5}, {-2, -2, 5 + h}, {2, -2, 5 + h}, {2, 2, 5 + h}, {-2, 2, 5 + h}};
+    m.faces = {{0, 2, 1}, {0, 3, 2}, {0, 4, 3}, {0, 1, 4}, {1, 2, 3}, {1, 3, 4}};
+    CheckResult r = check_supports(m, Mesh{}, p, {});
+    EXPECT_EQ(r.face_points, 0u) << r.summary();
+    EXPECT_EQ(r.lowest_points, 1u) << r.summary();
+    EXPECT_FALSE(r.coverage_ok());
 }
