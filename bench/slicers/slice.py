@@ -1,12 +1,15 @@
 #!/usr/bin/python3
 """Slice STL(s) with CuraEngine 4.13 or PrusaSlicer 2.5 and report grams, print time, volume.
 
-usage: slice.py --slicer cura|prusa --support none|normal|tree|grid [--out-dir DIR] [--json]
+usage: slice.py --slicer cura|prusa --support none|normal|tree|mesh|grid|snug [--out-dir DIR] [--json]
                 [--profile profile.json] [--scale S] [--set KEY=VALUE ...] [--timeout SEC]
-                model.stl [more.stl ...]
+                [--support-mesh supports.stl ...] model.stl [more.stl ...]
 
 * cura:  --support none | normal (lines, 15%) | tree (support_structure=tree)
-* prusa: --support none | grid   (support_material_style=grid, rectilinear lines)
+         | mesh (the --support-mesh STLs print as a Cura support mesh, the slicer's own supports off)
+* prusa: --support none | grid | snug (support_material_style, rectilinear lines)
+         A PrusaSlicer 3MF (e.g. clever-support's <name>.prusa.3mf) is sliced as it is, with its
+         per-volume settings: give it alone, scale 1; PrusaSlicer centres it on the bed.
 
 Several STLs are merged into ONE mesh (one STL file, one object / mesh group):
 a model plus a separate support STL slice together, and both slicers union
@@ -40,7 +43,7 @@ import cura_settings  # noqa: E402
 
 CURA_BIN = os.environ.get("CURA_ENGINE", "CuraEngine")
 PRUSA_BIN = os.environ.get("PRUSA_SLICER", "prusa-slicer")
-SUPPORT_MODES = {"cura": ("none", "normal", "tree"), "prusa": ("none", "grid")}
+SUPPORT_MODES = {"cura": ("none", "normal", "tree", "mesh"), "prusa": ("none", "grid", "snug")}
 
 
 class SliceError(RuntimeError):
@@ -89,11 +92,19 @@ def write_stl(path, tris, name="clever-support merged"):
 
 def merge_and_place(paths, out_path, bed, scale=1.0):
     """Merge STLs into one mesh, scale, centre in XY on the bed, min z = 0."""
-    tris = []
-    for p in paths:
-        tris.extend(read_stl(p))
-    if not tris:
-        raise SliceError("no triangles in %s" % ", ".join(paths))
+    return place_groups([(paths, out_path)], bed, scale)
+
+
+def place_groups(groups, bed, scale=1.0):
+    """Each group [(stl paths, out path)] merged into its own STL, all moved by ONE translation: the
+    one that scales, centres the whole set in XY on the bed and puts it on it (min z = 0). A model
+    and its support mesh keep their relative position this way."""
+    group_tris = []
+    for paths, _ in groups:
+        group_tris.append([t for p in paths for t in read_stl(p)])
+        if not group_tris[-1]:
+            raise SliceError("no triangles in %s" % ", ".join(paths))
+    tris = [t for g in group_tris for t in g]
     xs = [v[0] for t in tris for v in t]
     ys = [v[1] for t in tris for v in t]
     zs = [v[2] for t in tris for v in t]
@@ -101,8 +112,8 @@ def merge_and_place(paths, out_path, bed, scale=1.0):
     cy = (min(ys) + max(ys)) / 2.0 * scale
     mz = min(zs) * scale
     dx, dy, dz = bed[0] / 2.0 - cx, bed[1] / 2.0 - cy, -mz
-    placed = [tuple((v[0] * scale + dx, v[1] * scale + dy, v[2] * scale + dz) for v in t) for t in tris]
-    write_stl(out_path, placed)
+    for (_, out_path), g in zip(groups, group_tris):
+        write_stl(out_path, [tuple((v[0] * scale + dx, v[1] * scale + dy, v[2] * scale + dz) for v in t) for t in g])
     size = [(max(xs) - min(xs)) * scale, (max(ys) - min(ys)) * scale, (max(zs) - min(zs)) * scale]
     if size[0] > bed[0] or size[1] > bed[1] or size[2] > bed[2]:
         raise SliceError("model %.1f x %.1f x %.1f mm does not fit the %gx%gx%g bed (use --scale)"
@@ -166,7 +177,12 @@ def _shell_quote(s):
 # CuraEngine
 # --------------------------------------------------------------------------
 
-def slice_cura(stl, support, profile, work, timeout, extra=None):
+# Per-mesh settings that make a mesh print as support ("Print as support" in Cura's GUI). Without
+# drop_down=False Cura would add support under the support mesh's own overhangs.
+CURA_SUPPORT_MESH = ["support_mesh=True", "support_mesh_drop_down=False"]
+
+
+def slice_cura(stl, support, profile, work, timeout, extra=None, support_mesh_stl=None):
     overrides = cura_settings.cura_overrides(profile, support)
     overrides.update(extra or {})
     resolver = cura_settings.Resolver()
@@ -192,12 +208,19 @@ def slice_cura(stl, support, profile, work, timeout, extra=None):
     # The merged STL is in bed coordinates (centred at bed_x/2, bed_y/2).  CuraEngine
     # (machine_center_is_zero=false) adds (machine_width/2, machine_depth/2) to every
     # mesh, so shift it back with the per-mesh position settings given after -l.
-    cmd += ["-l", stl,
-            "-s", "mesh_position_x=%s" % (-bed_x / 2.0),
-            "-s", "mesh_position_y=%s" % (-bed_y / 2.0),
-            "-s", "mesh_position_z=0",
-            "-s", "center_object=False",
-            "-o", gcode]
+    def mesh(path, settings=()):
+        out = ["-l", path,
+               "-s", "mesh_position_x=%s" % (-bed_x / 2.0),
+               "-s", "mesh_position_y=%s" % (-bed_y / 2.0),
+               "-s", "mesh_position_z=0",
+               "-s", "center_object=False"]
+        for kv in settings:
+            out += ["-s", kv]
+        return out
+    cmd += mesh(stl)
+    if support_mesh_stl:
+        cmd += mesh(support_mesh_stl, CURA_SUPPORT_MESH)
+    cmd += ["-o", gcode]
     write_cmd(os.path.join(work, "cura_cmd.sh"), cmd)
     out, err, wall = run_slicer(cmd, work, os.path.join(work, "cura"), timeout)
     m_t = re.findall(r"Print time \(s\):\s*([0-9.]+)", err)
@@ -254,7 +277,7 @@ def parse_duration(text):
     return total
 
 
-def slice_prusa(stl, support, profile, work, timeout, extra=None):
+def slice_prusa(stl, support, profile, work, timeout, extra=None, support_mesh_stl=None):
     cfg = prusa_config(profile, support)
     cfg.update(extra or {})
     ini = os.path.join(work, "prusa_profile.ini")
@@ -265,8 +288,10 @@ def slice_prusa(stl, support, profile, work, timeout, extra=None):
     datadir = os.path.join(work, "prusa-datadir")  # private: no user preset leaks in
     os.makedirs(datadir, exist_ok=True)
     gcode = os.path.join(work, "out.gcode")
+    # A 3MF is not placed by us (it keeps its own parts and settings): PrusaSlicer centres it.
+    placement = [] if stl.lower().endswith(".3mf") else ["--dont-arrange"]
     cmd = [PRUSA_BIN, "--datadir", datadir, "--loglevel", "1", "--config-compatibility", "disable",
-           "--export-gcode", "--load", ini, "--dont-arrange", "-o", gcode, stl]
+           "--export-gcode", "--load", ini] + placement + ["-o", gcode, stl]
     write_cmd(os.path.join(work, "prusa_cmd.sh"), cmd)
     out, err, wall = run_slicer(cmd, work, os.path.join(work, "prusa"), timeout)
     if not os.path.isfile(gcode) or os.path.getsize(gcode) == 0:
@@ -308,13 +333,19 @@ def slice_prusa(stl, support, profile, work, timeout, extra=None):
 # --------------------------------------------------------------------------
 
 def slice_models(slicer, support, models, out_dir=None, profile_path=None, scale=1.0, timeout=3600,
-                 overrides=None):
+                 overrides=None, support_meshes=None):
     """Slice; return the result dict.  Raises SliceError / ValueError."""
+    support_meshes = list(support_meshes or [])
+    if (support == "mesh") != bool(support_meshes):
+        raise ValueError("--support mesh and --support-mesh FILE go together (cura only)")
+    threemf = [m for m in models if m.lower().endswith(".3mf")]
+    if threemf and (slicer != "prusa" or len(models) != 1 or scale != 1.0):
+        raise ValueError("a 3MF is sliced by prusa alone, as the only input, at scale 1")
     if slicer not in SUPPORT_MODES:
         raise ValueError("--slicer must be cura or prusa")
     if support not in SUPPORT_MODES[slicer]:
         raise ValueError("--support for %s must be one of: %s" % (slicer, ", ".join(SUPPORT_MODES[slicer])))
-    for m in models:
+    for m in models + support_meshes:
         if not os.path.isfile(m):
             raise ValueError("no such file: %s" % m)
     profile = cura_settings.load_profile(profile_path)
@@ -328,10 +359,17 @@ def slice_models(slicer, support, models, out_dir=None, profile_path=None, scale
         work = tmp
     try:
         stl = os.path.join(work, "merged.stl")
-        info = merge_and_place(models, stl, bed, scale)
+        support_stl = os.path.join(work, "support_mesh.stl") if support_meshes else None
+        if threemf:
+            stl, info = os.path.abspath(models[0]), {"size_mm": None}
+        else:
+            groups = [(models, stl)] + ([(support_meshes, support_stl)] if support_meshes else [])
+            info = place_groups(groups, bed, scale)
         fn = slice_cura if slicer == "cura" else slice_prusa
-        res = fn(stl, support, profile, work, timeout, overrides)
+        res = fn(stl, support, profile, work, timeout, overrides, support_stl)
         result = {"slicer": slicer, "support": support, "models": [os.path.abspath(m) for m in models]}
+        if support_meshes:
+            result["support_meshes"] = [os.path.abspath(m) for m in support_meshes]
         result.update(res)
         result["scale"] = scale
         result["model_size_mm"] = info["size_mm"]
@@ -350,8 +388,10 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description="Slice STL(s) with CuraEngine or PrusaSlicer and report "
                                  "grams, print time and extruded volume.")
     ap.add_argument("--slicer", required=True, choices=("cura", "prusa"))
-    ap.add_argument("--support", required=True, choices=("none", "normal", "tree", "grid"),
-                    help="cura: none|normal|tree; prusa: none|grid")
+    ap.add_argument("--support", required=True, choices=("none", "normal", "tree", "mesh", "grid", "snug"),
+                    help="cura: none|normal|tree|mesh; prusa: none|grid|snug")
+    ap.add_argument("--support-mesh", action="append", default=[], metavar="STL",
+                    help="with --support mesh (cura): STL(s) printed as a support mesh beside the model(s)")
     ap.add_argument("--out-dir", help="keep merged.stl, out.gcode, the command, logs and settings here")
     ap.add_argument("--json", action="store_true", help="print one JSON object")
     ap.add_argument("--profile", default=None, help="profile.json (default: beside this script)")
@@ -360,7 +400,7 @@ def main(argv=None):
                     help="extra slicer setting on top of profile.json (repeatable). Cura: a setting key, "
                          "value as JSON (never re-derived); prusa: an .ini key and value")
     ap.add_argument("--timeout", type=float, default=3600, help="slicer time limit in seconds (default 3600)")
-    ap.add_argument("models", nargs="+", help="STL file(s); several are merged into one mesh")
+    ap.add_argument("models", nargs="+", help="STL file(s), several merged into one mesh; or one PrusaSlicer 3MF")
     args = ap.parse_args(argv)
     extra = {}
     for item in args.set:
@@ -371,7 +411,7 @@ def main(argv=None):
         extra[key.strip()] = cura_settings.parse_cli_value(val) if args.slicer == "cura" else val
     try:
         res = slice_models(args.slicer, args.support, args.models, args.out_dir, args.profile,
-                           args.scale, args.timeout, extra)
+                           args.scale, args.timeout, extra, args.support_mesh)
     except ValueError as exc:
         print("slice.py: error: %s" % exc, file=sys.stderr)
         return 2

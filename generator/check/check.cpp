@@ -99,16 +99,20 @@ bool contains(const Shell& s, const Vec3& p, double tol) {
 // A vertical face is never above a point: a ray that runs along one (a tip exactly under a rim)
 // goes on past it. A point on the surface (a corner touching a wall beside it) is judged by the
 // model above it; how far a solid reaches sideways into the model is the penetration check's.
+// Inside or not is read off the face the ray meets: leaving the solid, it faces up.
 double gap_up(const ModelQuery& q, const Vec3& p) {
-    const double d = std::sqrt(q.squared_distance(p));
-    if (d > kOnSurface && q.inside(p)) return -d;
     Vec3 from = p;
     for (int grazes = 0; grazes < 8; ++grazes) {
         auto hit = q.first_hit(from, {0, 0, 1});
         if (!hit) return INFINITY;
         const Vec3 n = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
-        if (std::abs(n.z) > 1e-9 * norm(n)) return hit->point.z - p.z;
-        from = hit->point + Vec3{0, 0, 1e-6};
+        if (std::abs(n.z) <= 1e-9 * norm(n)) {
+            from = hit->point + Vec3{0, 0, 1e-6};
+            continue;
+        }
+        if (n.z < 0) return hit->point.z - p.z;  // entering the model from below: outside
+        const double d = std::sqrt(q.squared_distance(p));
+        return d > kOnSurface && q.inside(p) ? -d : hit->point.z - p.z;
     }
     return INFINITY;
 }
@@ -226,15 +230,22 @@ void check_penetration(const ModelQuery& q, const Shell& s, const Tolerances& t,
     std::vector<const Triangle*> apart;  // faces that do not touch the model's surface
     for (const auto& f : s.mesh.faces) {
         const Vec3 &a = s.mesh.vertices[f[0]], &b = s.mesh.vertices[f[1]], &c = s.mesh.vertices[f[2]];
-        if (q.triangle_hits(a, b, c)) probe.probe(a, b, c, 0);
+        const Vec3 g = (a + b + c) / 3.0;
+        const double reach = std::max({distance(g, a), distance(g, b), distance(g, c)});
+        const bool far = q.squared_distance(g) > reach * reach;  // no surface within its ball
+        if (!far && q.triangle_hits(a, b, c)) probe.probe(a, b, c, 0);
         else apart.push_back(&f);
     }
     // Faces apart from the surface: all outside when the solid crosses no surface and one vertex
-    // is outside; else each face by its own corner.
+    // is outside; else each face by its own corner (each corner asked once).
     const bool crosses = apart.size() < s.mesh.faces.size();
     if (!crosses && !apart.empty() && !q.inside(s.mesh.vertices[(*apart[0])[0]])) apart.clear();
-    for (const Triangle* f : apart)
-        if (q.inside(s.mesh.vertices[(*f)[0]])) probe.probe(s.mesh.vertices[(*f)[0]], s.mesh.vertices[(*f)[1]], s.mesh.vertices[(*f)[2]], 0);
+    std::vector<signed char> inside(s.mesh.vertices.size(), -1);
+    for (const Triangle* f : apart) {
+        auto v = (*f)[0];
+        if (inside[v] < 0) inside[v] = q.inside(s.mesh.vertices[v]);
+        if (inside[v]) probe.probe(s.mesh.vertices[(*f)[0]], s.mesh.vertices[(*f)[1]], s.mesh.vertices[(*f)[2]], 0);
+    }
     if (probe.worst_depth > r.max_penetration) r.max_penetration = probe.worst_depth, r.max_penetration_at = probe.worst_at;
     if (probe.worst_excess > 0) {
         ++r.penetrating_bodies;
@@ -332,13 +343,15 @@ void check_coverage(const Mesh& model, const ModelQuery& q, const std::vector<Sh
     const Vec3 just_below{0, 0, 0.01};
     std::vector<const JudgePoint*> need;
     for (const auto& x : j.points) {
-        if (q.inside(x.p - just_below)) {  // material right below: a face inside the print
+        // The first face below: leaving the solid (facing down), the point has material right
+        // below it (a face inside the print, where shells overlap); else it is the floor.
+        auto hit = q.first_hit(x.p - just_below, {0, 0, -1});
+        if (hit && face_normal_unnormalized(model, model.faces[hit->face]).z < 0) {
             near.add(x.p);
             continue;
         }
         ++r.overhang_points;
         ++(x.kind == JudgeKind::Face ? r.face_points : x.kind == JudgeKind::Ridge ? r.ridge_points : r.lowest_points);
-        auto hit = q.first_hit(x.p - just_below, {0, 0, -1});
         if (x.p.z - (hit ? hit->point.z : 0.0) <= t.bridge_height) {
             ++r.exempt;
             near.add(x.p);
@@ -374,13 +387,22 @@ CheckResult check_supports(const Mesh& model_in, const Mesh& supports, const Par
     auto t0 = std::chrono::steady_clock::now();
     std::vector<Shell> shells = shells_of(supports);
     r.bodies = shells.size();
+    auto t0b = std::chrono::steady_clock::now();
+    if (std::getenv("CS_CHECK_TIMES")) std::fprintf(stderr, "split %.2f\n", std::chrono::duration<double>(t0b-t0).count());
+    double ta = 0, tb = 0, tc = 0;
     for (auto& s : shells) {
+        auto a0 = std::chrono::steady_clock::now();
         find_top_contact(q, s, t);
         s.bottom_on_model = s.zmin > kOnBed && rests_on_model(q, s, t.gap + (t.gap - t.gap_min));
+        auto a1 = std::chrono::steady_clock::now();
         check_shape(s, p, o, r);
         check_air_gap(s, t, r);
+        auto a2 = std::chrono::steady_clock::now();
         if (r.model_closed) check_penetration(q, s, t, r);
+        auto a3 = std::chrono::steady_clock::now();
+        ta += std::chrono::duration<double>(a1-a0).count(); tb += std::chrono::duration<double>(a2-a1).count(); tc += std::chrono::duration<double>(a3-a2).count();
     }
+    if (std::getenv("CS_CHECK_TIMES")) std::fprintf(stderr, "contact %.2f shape %.2f pen %.2f\n", ta, tb, tc);
     auto t1 = std::chrono::steady_clock::now();
     check_grounding(q, shells, t, r);
     auto t2 = std::chrono::steady_clock::now();

@@ -223,6 +223,11 @@ int main(int argc, char** argv) {
                  "  clever-support part.scad -D width=30 --block 0,0,0,10,10,20\n"
                  "  clever-support regrow out/m/m.scad              # after editing it\n",
                  "clever-support"};
+    app.footer("Which file to print (in --out):\n"
+               "  Cura:         <name>.3mf        supports marked \"print as support\"; import\n"
+               "                                  clever_support.curaprofile once (README, \"Printing in Cura\")\n"
+               "  PrusaSlicer:  <name>.prusa.3mf  supports as a part with support-like settings\n"
+               "  Other:        <name>.supported.stl with the slicer's own supports off");
     app.set_version_flag("--version", CS_VERSION);
     app.require_subcommand(0, 1);
 

@@ -180,7 +180,12 @@ std::vector<OutputFile> output_files(const Result& r, const Job& job, const std:
     files.push_back({r.name + ".supports.stl", [&r] { return encode_stl(r.supports.mesh, "clever-support: supports"); }});
     files.push_back({r.name + ".model.stl", [&r] { return encode_stl(r.model, "clever-support: placed model"); }});
     files.push_back({r.name + ".3mf", [&r] {
-                         return encode_3mf({{r.name, r.model}, {r.name + " supports", r.supports.mesh}});
+                         return encode_3mf_cura(r.name, {{r.name + " model", r.model, {}},
+                                                         {r.name + " supports", r.supports.mesh, cura_support_mesh_settings()}});
+                     }});
+    files.push_back({r.name + ".prusa.3mf", [&r] {
+                         return encode_3mf_prusa(r.name, {{r.name + " model", r.model, {}},
+                                                          {r.name + " supports", r.supports.mesh, prusa_support_volume_settings()}});
                      }});
     files.push_back({r.name + ".report.json", [&r, &job] { return report_json(r, job); }});
     files.push_back({r.name + ".scad", [&r, &job, version] {
@@ -189,6 +194,7 @@ std::vector<OutputFile> output_files(const Result& r, const Job& job, const std:
                          return emit_scad(r.supports, job, meta);
                      }});
     files.push_back({"clever_support.scad", [] { return scad_template_library(); }});
+    files.push_back({"clever_support.curaprofile", [] { return encode_cura_profile("clever-support supports"); }});
     return files;
 }
 
@@ -249,7 +255,10 @@ std::string human_summary(const Result& r, const std::string& dir) {
     double total = 0;
     for (const auto& x : r.stages) total += x.seconds;
     s += fmt::format("  time        {:.2f} s\n", total);
-    s += fmt::format("  outputs     {}/{}.supported.stl (print this), .supports.stl, .model.stl, .report.json, .scad\n",
+    s += fmt::format("  outputs     {}/{}.supported.stl, .supports.stl, .model.stl, .report.json, .scad\n", dir, r.name);
+    s += fmt::format("  print       Cura: open {0}/{1}.3mf (supports print as support; import {0}/clever_support.curaprofile\n"
+                     "              once, see README \"Printing in Cura\"). PrusaSlicer: open {0}/{1}.prusa.3mf.\n"
+                     "              Any other slicer: {0}/{1}.supported.stl with its own supports off.\n",
                      dir, r.name);
     return s;
 }

@@ -2,7 +2,9 @@
 //   <name>.supported.stl  model + support solids (each closed and outward-facing)
 //   <name>.supports.stl   the support solids alone
 //   <name>.model.stl      the placed (scaled, rotated, on-bed) model
-//   <name>.3mf            model and supports as two objects of one build (for slicers)
+//   <name>.3mf            for Cura: model + supports grouped, the supports marked "print as support"
+//   <name>.prusa.3mf      for PrusaSlicer: one object, the supports a volume with support-like settings
+//   clever_support.curaprofile  Cura's support settings for the supports of <name>.3mf, to import once
 //   <name>.report.json    parameters, counts, lengths, volumes, the columns baseline, timings
 //   <name>.scad           parametric OpenSCAD (see output/scad.hpp) + clever_support.scad beside it
 // All files are written to temporaries first and renamed into place only when every one of them

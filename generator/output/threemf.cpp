@@ -31,10 +31,30 @@ void put32(std::string& s, std::uint32_t v) {
     for (int i = 0; i < 4; ++i) s.push_back(char((v >> (8 * i)) & 0xFF));
 }
 
-// Appends the object's XML to `s`. Identical vertices are shared (3MF meshes are indexed), found
-// by sorting rather than a map: a 5M-triangle scan stays within a few hundred megabytes.
-void append_mesh_xml(std::string& s, int id, const NamedMesh& o) {
-    const auto& mv = o.mesh.vertices;
+std::string xml_escape(const std::string& text) {
+    std::string out;
+    for (char c : text) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            default: out += c;
+        }
+    }
+    return out;
+}
+
+// A mesh as 3MF wants it: indexed vertices in order of first use and the non-degenerate triangles.
+struct IndexedMesh {
+    std::vector<std::uint32_t> vertices;  // indices into the source mesh's vertices
+    std::vector<std::array<std::uint32_t, 3>> triangles;  // indices into `vertices`
+};
+
+// Identical vertices are shared (3MF meshes are indexed), found by sorting rather than a map: a
+// 5M-triangle scan stays within a few hundred megabytes.
+IndexedMesh index_mesh(const Mesh& m) {
+    const auto& mv = m.vertices;
     std::vector<std::uint32_t> by_coords(mv.size());
     std::iota(by_coords.begin(), by_coords.end(), 0u);
     auto key = [&](std::uint32_t i) { return std::make_tuple(mv[i].x, mv[i].y, mv[i].z); };
@@ -47,22 +67,92 @@ void append_mesh_xml(std::string& s, int id, const NamedMesh& o) {
     // Output numbers in order of first use by the faces.
     constexpr std::uint32_t kUnused = UINT32_MAX;
     std::vector<std::uint32_t> out_id(mv.size(), kUnused);
-    std::vector<std::uint32_t> order;
-    for (const auto& f : o.mesh.faces)
+    IndexedMesh out;
+    for (const auto& f : m.faces)
         for (int k = 0; k < 3; ++k)
-            if (std::uint32_t c = same[f[k]]; out_id[c] == kUnused) out_id[c] = static_cast<std::uint32_t>(order.size()), order.push_back(c);
-    s.reserve(s.size() + 60 * order.size() + 45 * o.mesh.faces.size() + 200);
-    s += fmt::format("<object id=\"{}\" name=\"{}\" type=\"model\"><mesh><vertices>\n", id, o.name);
-    for (std::uint32_t c : order)
-        fmt::format_to(std::back_inserter(s), "<vertex x=\"{:.6f}\" y=\"{:.6f}\" z=\"{:.6f}\"/>\n", mv[c].x, mv[c].y, mv[c].z);
-    s += "</vertices><triangles>\n";
-    for (const auto& f : o.mesh.faces) {
-        std::uint32_t v[3] = {out_id[same[f[0]]], out_id[same[f[1]]], out_id[same[f[2]]]};
-        if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2]) continue;
-        fmt::format_to(std::back_inserter(s), "<triangle v1=\"{}\" v2=\"{}\" v3=\"{}\"/>\n", v[0], v[1], v[2]);
+            if (std::uint32_t c = same[f[k]]; out_id[c] == kUnused)
+                out_id[c] = static_cast<std::uint32_t>(out.vertices.size()), out.vertices.push_back(c);
+    out.triangles.reserve(m.faces.size());
+    for (const auto& f : m.faces) {
+        std::array<std::uint32_t, 3> v = {out_id[same[f[0]]], out_id[same[f[1]]], out_id[same[f[2]]]};
+        if (v[0] != v[1] && v[1] != v[2] && v[0] != v[2]) out.triangles.push_back(v);
     }
-    s += "</triangles></mesh></object>\n";
+    return out;
 }
+
+void append_vertices(std::string& s, const Mesh& m, const IndexedMesh& im) {
+    s.reserve(s.size() + 60 * im.vertices.size());
+    for (std::uint32_t c : im.vertices) {
+        const auto& p = m.vertices[c];
+        fmt::format_to(std::back_inserter(s), "<vertex x=\"{:.6f}\" y=\"{:.6f}\" z=\"{:.6f}\"/>\n", p.x, p.y, p.z);
+    }
+}
+
+// `offset`: the number of vertices written before this part in the same object.
+void append_triangles(std::string& s, const IndexedMesh& im, std::uint32_t offset) {
+    s.reserve(s.size() + 45 * im.triangles.size());
+    for (const auto& t : im.triangles)
+        fmt::format_to(std::back_inserter(s), "<triangle v1=\"{}\" v2=\"{}\" v3=\"{}\"/>\n", t[0] + offset,
+                       t[1] + offset, t[2] + offset);
+}
+
+constexpr const char* kCoreNamespace = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02";
+
+std::string model_header(const std::string& extra_namespaces, const std::string& metadata) {
+    return fmt::format(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+        "<model unit=\"millimeter\" xml:lang=\"en-US\" xmlns=\"{}\"{}>\n"
+        "<metadata name=\"Application\">clever-support</metadata>\n{}<resources>\n",
+        kCoreNamespace, extra_namespaces, metadata);
+}
+
+// The package around 3D/3dmodel.model (plus any extra parts, e.g. a slicer's config).
+std::string package(std::string model, std::vector<std::pair<std::string, std::string>> extra) {
+    std::vector<std::pair<std::string, std::string>> parts;
+    parts.emplace_back("[Content_Types].xml",
+                       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                       "<Types xmlns=\"http://schemas.openxmlformats.org/package/2006/content-types\">"
+                       "<Default Extension=\"rels\" ContentType=\"application/vnd.openxmlformats-package.relationships+xml\"/>"
+                       "<Default Extension=\"model\" ContentType=\"application/vnd.ms-package.3dmanufacturing-3dmodel+xml\"/>"
+                       "<Default Extension=\"config\" ContentType=\"text/xml\"/>"
+                       "</Types>\n");
+    parts.emplace_back("_rels/.rels",
+                       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+                       "<Relationships xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\">"
+                       "<Relationship Target=\"/3D/3dmodel.model\" Id=\"rel0\" "
+                       "Type=\"http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel\"/></Relationships>\n");
+    parts.emplace_back("3D/3dmodel.model", std::move(model));
+    for (auto& e : extra) parts.push_back(std::move(e));
+    return encode_zip(std::move(parts));
+}
+
+std::vector<const NamedMesh*> non_empty(const std::vector<NamedMesh>& parts) {
+    std::vector<const NamedMesh*> out;
+    for (const auto& p : parts)
+        if (!p.mesh.faces.empty()) out.push_back(&p);
+    return out;
+}
+
+// 3MF coordinates start at the build plate's front-left corner, and Cura keeps a 3MF's positions on
+// load (it arranges only other formats): our print, centred on the origin, would hang off that
+// corner. The build item shifts it so its footprint starts this far from the corner, which keeps it
+// on any plate it fits, clear of the slicers' border zones (skirt, brim, travel clearance).
+constexpr double kPlateCornerMarginMm = 10;
+
+std::string build_item(int object_id, const std::vector<const NamedMesh*>& parts) {
+    Box3 b;
+    for (const NamedMesh* p : parts)
+        for (const auto& f : p->mesh.faces)
+            for (int k = 0; k < 3; ++k) b.add(p->mesh.vertices[f[k]]);
+    double dx = parts.empty() ? 0 : kPlateCornerMarginMm - b.min.x, dy = parts.empty() ? 0 : kPlateCornerMarginMm - b.min.y;
+    return fmt::format("<build>\n<item objectid=\"{}\" transform=\"1 0 0 0 1 0 0 0 1 {:.6f} {:.6f} 0\"/>\n</build>\n",
+                       object_id, dx, dy);
+}
+
+// PrusaSlicer 2.5's default support_material_speed, mm/s: the per-volume perimeter speeds of the
+// supports volume are set to it (its default small_perimeter_speed, 15 mm/s, would otherwise
+// apply to every strut's closed loop).
+constexpr const char* kPrusaSupportSpeed = "60";
 
 }  // namespace
 
@@ -105,35 +195,104 @@ std::string encode_zip(std::vector<std::pair<std::string, std::string>> entries)
     return out;
 }
 
-std::string encode_3mf(const std::vector<NamedMesh>& objects) {
-    std::string model =
-        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-        "<model unit=\"millimeter\" xml:lang=\"en-US\" "
-        "xmlns=\"http://schemas.microsoft.com/3dmanufacturing/core/2015/02\">\n"
-        "<metadata name=\"Application\">clever-support</metadata>\n<resources>\n";
-    std::string build = "<build>\n";
+const Settings& cura_support_mesh_settings() {
+    static const Settings settings = {{"support_mesh", "True"}, {"support_mesh_drop_down", "False"}};
+    return settings;
+}
+
+const Settings& prusa_support_volume_settings() {
+    static const Settings settings = {{"perimeters", "1"},
+                                      {"fill_density", "0%"},
+                                      {"top_solid_layers", "0"},
+                                      {"bottom_solid_layers", "0"},
+                                      {"perimeter_speed", kPrusaSupportSpeed},
+                                      {"external_perimeter_speed", kPrusaSupportSpeed},
+                                      {"small_perimeter_speed", kPrusaSupportSpeed}};
+    return settings;
+}
+
+const Settings& cura_support_line_settings() {
+    static const Settings settings = {{"support_wall_count", "1"},
+                                      {"support_infill_rate", "0"},
+                                      {"support_join_distance", "0"},
+                                      {"support_interface_enable", "False"},
+                                      {"limit_support_retractions", "True"}};
+    return settings;
+}
+
+std::string encode_cura_profile(const std::string& profile_name) {
+    // Cura 4.13's container format: version 4, setting_version 19 (CuraApplication.SettingVersion).
+    // quality_type "normal" is the quality every machine has; the settings apply on top of it.
+    std::string cfg = fmt::format(
+        "[general]\nversion = 4\nname = {}\ndefinition = fdmprinter\n\n"
+        "[metadata]\ntype = quality_changes\nquality_type = normal\nsetting_version = 19\n\n[values]\n",
+        profile_name);
+    for (const auto& [key, value] : cura_support_line_settings()) cfg += key + " = " + value + "\n";
+    return encode_zip({{"clever_support_supports", std::move(cfg)}});
+}
+
+std::string encode_3mf_cura(const std::string& name, const std::vector<NamedMesh>& parts) {
+    std::string model = model_header("", "");
+    std::string components;
     int id = 1;
-    for (const auto& o : objects) {
-        if (o.mesh.faces.empty()) continue;
-        append_mesh_xml(model, id, o);
-        build += fmt::format("<item objectid=\"{}\"/>\n", id);
-        ++id;
+    for (const NamedMesh* p : non_empty(parts)) {
+        model += fmt::format("<object id=\"{}\" name=\"{}\" type=\"model\">", id, xml_escape(p->name));
+        if (!p->settings.empty()) {
+            model += "<metadatagroup>";
+            for (const auto& [key, value] : p->settings)
+                model += fmt::format("<metadata name=\"cura:{}\" preserve=\"true\">{}</metadata>", xml_escape(key),
+                                     xml_escape(value));
+            model += "</metadatagroup>";
+        }
+        IndexedMesh im = index_mesh(p->mesh);
+        model += "<mesh><vertices>\n";
+        append_vertices(model, p->mesh, im);
+        model += "</vertices><triangles>\n";
+        append_triangles(model, im, 0);
+        model += "</triangles></mesh></object>\n";
+        components += fmt::format("<component objectid=\"{}\"/>", id++);
     }
-    model += "</resources>\n" + build + "</build>\n</model>\n";
-    std::vector<std::pair<std::string, std::string>> parts;
-    parts.emplace_back("[Content_Types].xml",
-                       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-                       "<Types xmlns=\"http://schemas.openxmlformats.org/package/2006/content-types\">"
-                       "<Default Extension=\"rels\" ContentType=\"application/vnd.openxmlformats-package.relationships+xml\"/>"
-                       "<Default Extension=\"model\" ContentType=\"application/vnd.ms-package.3dmanufacturing-3dmodel+xml\"/>"
-                       "</Types>\n");
-    parts.emplace_back("_rels/.rels",
-                       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-                       "<Relationships xmlns=\"http://schemas.openxmlformats.org/package/2006/relationships\">"
-                       "<Relationship Target=\"/3D/3dmodel.model\" Id=\"rel0\" "
-                       "Type=\"http://schemas.microsoft.com/3dmanufacturing/2013/01/3dmodel\"/></Relationships>\n");
-    parts.emplace_back("3D/3dmodel.model", std::move(model));
-    return encode_zip(std::move(parts));
+    model += fmt::format("<object id=\"{}\" name=\"{}\" type=\"model\"><components>{}</components></object>\n", id,
+                         xml_escape(name), components);
+    model += "</resources>\n" + build_item(id, non_empty(parts)) + "</model>\n";
+    return package(std::move(model), {});
+}
+
+std::string encode_3mf_prusa(const std::string& name, const std::vector<NamedMesh>& parts) {
+    std::string model = model_header(" xmlns:slic3rpe=\"http://schemas.slic3r.org/3mf/2017/06\"",
+                                     "<metadata name=\"slic3rpe:Version3mf\">1</metadata>\n");
+    model += fmt::format("<object id=\"1\" name=\"{}\" type=\"model\"><mesh><vertices>\n", xml_escape(name));
+    std::vector<const NamedMesh*> used = non_empty(parts);
+    std::vector<IndexedMesh> indexed;
+    for (const NamedMesh* p : used) {
+        indexed.push_back(index_mesh(p->mesh));
+        append_vertices(model, p->mesh, indexed.back());
+    }
+    model += "</vertices><triangles>\n";
+    std::string config = fmt::format(
+        "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<config>\n<object id=\"1\" instances_count=\"1\">\n"
+        "<metadata type=\"object\" key=\"name\" value=\"{}\"/>\n",
+        xml_escape(name));
+    std::uint32_t vertex_offset = 0;
+    size_t first_triangle = 0;
+    for (size_t i = 0; i < used.size(); ++i) {
+        const IndexedMesh& im = indexed[i];
+        append_triangles(model, im, vertex_offset);
+        vertex_offset += static_cast<std::uint32_t>(im.vertices.size());
+        if (im.triangles.empty()) continue;
+        config += fmt::format("<volume firstid=\"{}\" lastid=\"{}\">\n", first_triangle,
+                              first_triangle + im.triangles.size() - 1);
+        first_triangle += im.triangles.size();
+        config += fmt::format("<metadata type=\"volume\" key=\"name\" value=\"{}\"/>\n", xml_escape(used[i]->name));
+        config += "<metadata type=\"volume\" key=\"volume_type\" value=\"ModelPart\"/>\n";
+        for (const auto& [key, value] : used[i]->settings)
+            config += fmt::format("<metadata type=\"volume\" key=\"{}\" value=\"{}\"/>\n", xml_escape(key),
+                                  xml_escape(value));
+        config += "</volume>\n";
+    }
+    config += "</object>\n</config>\n";
+    model += "</triangles></mesh></object>\n</resources>\n" + build_item(1, used) + "</model>\n";
+    return package(std::move(model), {{"Metadata/Slic3r_PE_model.config", std::move(config)}});
 }
 
 }  // namespace cs

@@ -1,21 +1,60 @@
-// 3MF (3D Manufacturing Format) output: the model and its supports as separate objects of one
-// build, the way slicers (PrusaSlicer, Cura) open a multi-part print. A 3MF file is a ZIP package
-// of XML parts; ours is written uncompressed ("stored"), which every ZIP reader accepts.
+// 3MF (3D Manufacturing Format) output: the model and its supports in the forms the two slicers we
+// target read as "print these struts as support" (see shared notes slicer-handoff.md). A 3MF file
+// is a ZIP package of XML parts; ours is written uncompressed ("stored"), which every ZIP reader
+// accepts.
+//
+// One file cannot serve both slicers: Cura reads one mesh object as one model (its per-object
+// settings cannot address part of it), and PrusaSlicer drops separate objects onto the bed one by
+// one and refuses a model standing on near-point feet whose supports are another object. So:
+//   encode_3mf_cura   model and supports as components of one group; the supports object carries
+//                     Cura's per-object settings support_mesh=True, support_mesh_drop_down=False
+//   encode_3mf_prusa  one object with two ModelPart volumes; the supports volume carries
+//                     per-volume settings that print it like support (one perimeter, no infill)
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/geometry.hpp"
 
 namespace cs {
 
+using Settings = std::vector<std::pair<std::string, std::string>>;  // key, value (in file order)
+
 struct NamedMesh {
     std::string name;
-    const Mesh& mesh;  // triangle soup or indexed: identical vertices are shared in the output
+    const Mesh& mesh;   // triangle soup or indexed: identical vertices are shared in the output
+    Settings settings;  // slicer settings for this part (keys without any prefix)
 };
 
-std::string encode_3mf(const std::vector<NamedMesh>& objects);
+// Cura's "Per Model Settings -> Print as support". Read by Cura's 3MF reader as object metadata
+// "cura:<key>"; it keeps only keys the object's setting stack knows.
+const Settings& cura_support_mesh_settings();
+
+// PrusaSlicer 2.5 per-volume settings that make struts print like its supports: one perimeter, no
+// infill, no solid layers, perimeters at the support speed.
+const Settings& prusa_support_volume_settings();
+
+// Cura's global / per-extruder support settings under which a support mesh prints like its tree
+// supports (they cannot be set per object): one wall, no infill, no joining of neighbouring struts
+// (support_join_distance would fill the N-profile), no interface, no retraction between support
+// islands (Cura's default, which some printer profiles switch off).
+const Settings& cura_support_line_settings();
+
+// A Cura profile (.curaprofile: a ZIP of one quality_changes .cfg) with cura_support_line_settings,
+// to import once in Cura (Preferences -> Profiles -> Import). Cura 4.13's format; newer Cura
+// versions upgrade it on import.
+std::string encode_cura_profile(const std::string& profile_name);
+
+// Cura form: an object per part, grouped as components of one build item (so they keep their
+// relative position); each part's settings become <metadatagroup> "cura:" metadata.
+std::string encode_3mf_cura(const std::string& name, const std::vector<NamedMesh>& parts);
+
+// PrusaSlicer form: one object whose mesh holds every part's triangles in one contiguous block of
+// vertices and triangles per part, described as ModelPart volumes in Metadata/Slic3r_PE_model.config
+// with each part's settings.
+std::string encode_3mf_prusa(const std::string& name, const std::vector<NamedMesh>& parts);
 
 // A ZIP archive of the given (name, content) entries, stored without compression.
 // Entries are taken by value: move large ones in.

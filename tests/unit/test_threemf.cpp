@@ -1,9 +1,13 @@
-// 3MF output: a valid ZIP package with the model and its supports as two objects of one build,
-// and PrusaSlicer (when installed) slices it like the STL of the same print.
+// 3MF output in the forms the slicers read as "print these as supports": for Cura a group of two
+// objects, the supports object carrying cura:support_mesh in the reader's form; for PrusaSlicer one
+// object with two ModelPart volumes, each in its own contiguous block of vertices and triangles.
+// (tests/e2e/test_slicers.cpp slices both with the real slicers.)
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <fstream>
+#include <map>
+#include <regex>
 
 #include "mesh/mesh_io.hpp"
 #include "output/threemf.hpp"
@@ -39,45 +43,153 @@ std::map<std::string, std::string> unzip(const std::string& z) {
     return out;
 }
 
-TEST(ThreeMF, PackageHoldsModelAndSupportsAsTwoObjects) {
-    Mesh model = box({0, 0, 0}, {10, 10, 10});
-    Mesh supports = box({2, 2, 0}, {3, 3, 5});
-    auto files = unzip(encode_3mf({{"part", model}, {"part supports", supports}}));
-    ASSERT_EQ(files.size(), 3u);
-    ASSERT_TRUE(files.count("[Content_Types].xml") && files.count("_rels/.rels") && files.count("3D/3dmodel.model"));
-    const std::string& xml = files["3D/3dmodel.model"];
-    auto count = [&](const std::string& what) {
-        long n = 0;
-        for (size_t at = xml.find(what); at != std::string::npos; at = xml.find(what, at + 1)) ++n;
-        return n;
-    };
-    EXPECT_EQ(count("<object "), 2);
-    EXPECT_EQ(count("<item objectid="), 2);
-    EXPECT_EQ(count("<vertex "), 16);    // shared corners: 8 per box
-    EXPECT_EQ(count("<triangle "), 24);
-    EXPECT_NE(xml.find("unit=\"millimeter\""), std::string::npos);
+// Every `<tag ...>...</tag>` (or self-closed `<tag .../>`) element of `xml`, in order.
+std::vector<std::string> elements(const std::string& xml, const std::string& tag) {
+    std::vector<std::string> out;
+    for (size_t at = xml.find("<" + tag); at != std::string::npos; at = xml.find("<" + tag, at + 1)) {
+        char after = xml[at + 1 + tag.size()];
+        if (after != ' ' && after != '>' && after != '/') continue;  // a longer tag name
+        size_t open_end = xml.find('>', at);
+        if (xml[open_end - 1] == '/') {
+            out.push_back(xml.substr(at, open_end + 1 - at));
+            continue;
+        }
+        size_t close = xml.find("</" + tag + ">", at);
+        out.push_back(xml.substr(at, close + tag.size() + 3 - at));
+    }
+    return out;
 }
 
-TEST(ThreeMF, PrusaSlicerSlicesItLikeTheStl) {
-    if (run("command -v prusa-slicer").code != 0) GTEST_SKIP() << "prusa-slicer is not installed";
-    TempDir d;
-    Mesh t = box({-3, -3, 0}, {3, 3, 10});
-    append(t, box({-12, -4, 10}, {12, 4, 13}));
-    write_stl(d / "tee.stl", t);
-    ASSERT_EQ(run(quote(cli()) + " " + quote(d / "tee.stl") + " --orient keep -q --out " + quote(d.path)).code, 0);
-    auto slice = [&](const std::string& in, const std::string& out) {
-        auto r = run("prusa-slicer --datadir " + quote(d / "prusa") + " --export-gcode -o " + quote(out) + " " + quote(in));
-        EXPECT_EQ(r.code, 0) << r.out;
-        std::ifstream g(out);
-        std::string line;
-        double mm = -1;
-        while (std::getline(g, line))
-            if (line.rfind("; filament used [mm] = ", 0) == 0) mm = std::stod(line.substr(23));
-        return mm;
-    };
-    double from_3mf = slice(d / "tee.3mf", d / "a.gcode"), from_stl = slice(d / "tee.supported.stl", d / "b.gcode");
-    ASSERT_GT(from_3mf, 0);
-    EXPECT_NEAR(from_3mf, from_stl, 0.02 * from_stl) << "the 3MF's parts must stay where the generator put them";
+std::string attribute(const std::string& element, const std::string& name) {
+    std::smatch m;
+    std::regex re("\\b" + name + "=\"([^\"]*)\"");
+    std::string head = element.substr(0, element.find('>'));
+    return std::regex_search(head, m, re) ? m[1].str() : std::string();
+}
+
+long count(const std::string& text, const std::string& what) {
+    long n = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+}
+
+// The object's <metadatagroup> as Cura's 3MF reader (libSavitar) takes it: name -> value.
+std::map<std::string, std::string> cura_metadata(const std::string& object) {
+    std::map<std::string, std::string> out;
+    for (const auto& group : elements(object, "metadatagroup"))
+        for (const auto& md : elements(group, "metadata")) {
+            EXPECT_EQ(attribute(md, "preserve"), "true") << md;
+            size_t from = md.find('>') + 1;
+            out[attribute(md, "name")] = md.substr(from, md.find("</metadata>") - from);
+        }
+    return out;
+}
+
+struct TwoParts {
+    Mesh model = box({0, -5, 5}, {10, 5, 15});
+    Mesh supports = box({2, 2, 0}, {3, 3, 4.8});  // under the model, 0.2 mm z gap
+};
+
+TEST(ThreeMF, CuraGetsAGroupWhoseSupportsObjectIsMarkedPrintAsSupport) {
+    TwoParts p;
+    auto files = unzip(encode_3mf_cura("part", {{"part model", p.model, {}},
+                                                {"part supports", p.supports, cura_support_mesh_settings()}}));
+    ASSERT_TRUE(files.count("[Content_Types].xml") && files.count("_rels/.rels") && files.count("3D/3dmodel.model"));
+    const std::string& xml = files["3D/3dmodel.model"];
+    EXPECT_NE(xml.find("unit=\"millimeter\""), std::string::npos);
+    auto objects = elements(xml, "object");
+    ASSERT_EQ(objects.size(), 3u);
+    // The build holds the group alone; its components are the two mesh objects, untransformed.
+    auto items = elements(xml, "item");
+    ASSERT_EQ(items.size(), 1u);
+    const std::string& group = objects[2];
+    EXPECT_EQ(attribute(items[0], "objectid"), attribute(group, "id"));
+    auto components = elements(group, "component");
+    ASSERT_EQ(components.size(), 2u);
+    EXPECT_EQ(attribute(components[0], "objectid"), attribute(objects[0], "id"));
+    EXPECT_EQ(attribute(components[1], "objectid"), attribute(objects[1], "id"));
+    for (const auto& c : components) EXPECT_EQ(attribute(c, "transform"), "");
+    // Cura keeps a 3MF's positions, measured from the plate's front-left corner: the group's
+    // footprint (x from 0, y from -5) is moved to start 10 mm from that corner.
+    EXPECT_EQ(attribute(items[0], "transform"), "1 0 0 0 1 0 0 0 1 10.000000 15.000000 0");
+    EXPECT_EQ(count(group, "<mesh>"), 0);
+    // The model object has no settings; the supports object has exactly Cura's "Print as support".
+    EXPECT_TRUE(cura_metadata(objects[0]).empty());
+    auto md = cura_metadata(objects[1]);
+    EXPECT_EQ(md, (std::map<std::string, std::string>{{"cura:support_mesh", "True"},
+                                                      {"cura:support_mesh_drop_down", "False"}}));
+    // Metadata precedes the mesh, as the 3MF core schema orders an object's children.
+    EXPECT_LT(objects[1].find("<metadatagroup>"), objects[1].find("<mesh>"));
+    // Not the core spec's type="support": Cura ignores it and PrusaSlicer skips such objects.
+    EXPECT_EQ(count(xml, "type=\"support\""), 0);
+    EXPECT_EQ(count(objects[0], "<vertex "), 8);  // shared corners
+    EXPECT_EQ(count(objects[1], "<triangle "), 12);
+}
+
+TEST(ThreeMF, PrusaGetsOneObjectWithTwoVolumesInContiguousBlocks) {
+    TwoParts p;
+    auto files = unzip(encode_3mf_prusa("part", {{"part model", p.model, {}},
+                                                 {"part supports", p.supports, prusa_support_volume_settings()}}));
+    ASSERT_TRUE(files.count("3D/3dmodel.model") && files.count("Metadata/Slic3r_PE_model.config"));
+    const std::string& xml = files["3D/3dmodel.model"];
+    EXPECT_NE(xml.find("<metadata name=\"slic3rpe:Version3mf\">1</metadata>"), std::string::npos);
+    auto objects = elements(xml, "object");
+    ASSERT_EQ(objects.size(), 1u);
+    auto triangles = elements(objects[0], "triangle");
+    ASSERT_EQ(triangles.size(), 24u);
+    ASSERT_EQ(count(objects[0], "<vertex "), 16);
+    auto items = elements(xml, "item");
+    ASSERT_EQ(items.size(), 1u);
+    EXPECT_EQ(attribute(items[0], "transform"), "1 0 0 0 1 0 0 0 1 10.000000 15.000000 0");
+
+    const std::string& config = files["Metadata/Slic3r_PE_model.config"];
+    auto config_objects = elements(config, "object");
+    ASSERT_EQ(config_objects.size(), 1u);
+    EXPECT_EQ(attribute(config_objects[0], "id"), attribute(objects[0], "id"));
+    auto volumes = elements(config_objects[0], "volume");
+    ASSERT_EQ(volumes.size(), 2u);
+    // Volume i: triangles [12 i, 12 i + 11], using only vertices [8 i, 8 i + 7].
+    for (int i = 0; i < 2; ++i) {
+        EXPECT_EQ(attribute(volumes[i], "firstid"), std::to_string(12 * i));
+        EXPECT_EQ(attribute(volumes[i], "lastid"), std::to_string(12 * i + 11));
+        EXPECT_EQ(count(volumes[i], "key=\"volume_type\" value=\"ModelPart\""), 1);
+        for (int t = 12 * i; t < 12 * i + 12; ++t)
+            for (const char* v : {"v1", "v2", "v3"}) {
+                int id = std::stoi(attribute(triangles[t], v));
+                EXPECT_TRUE(id >= 8 * i && id < 8 * i + 8) << triangles[t];
+            }
+    }
+    // Settings on the supports volume only.
+    EXPECT_EQ(count(volumes[0], "type=\"volume\""), 2);  // name and volume_type
+    for (const auto& [key, value] : prusa_support_volume_settings())
+        EXPECT_EQ(count(volumes[1], "<metadata type=\"volume\" key=\"" + key + "\" value=\"" + value + "\"/>"), 1) << key;
+    for (const char* key : {"perimeters\" value=\"1", "fill_density\" value=\"0%", "top_solid_layers\" value=\"0",
+                            "bottom_solid_layers\" value=\"0"})
+        EXPECT_EQ(count(volumes[1], std::string("key=\"") + key + "\""), 1) << key;
+}
+
+TEST(ThreeMF, CuraProfileHoldsTheSupportLineSettingsInCurasFormat) {
+    auto files = unzip(encode_cura_profile("clever-support supports"));
+    ASSERT_EQ(files.size(), 1u);
+    const std::string& cfg = files.begin()->second;
+    for (const char* line : {"[general]\nversion = 4\n", "name = clever-support supports\n", "definition = fdmprinter\n",
+                             "[metadata]\ntype = quality_changes\n", "quality_type = normal\n", "setting_version = 19\n",
+                             "[values]\n", "support_wall_count = 1\n", "support_infill_rate = 0\n",
+                             "support_join_distance = 0\n"})
+        EXPECT_NE(cfg.find(line), std::string::npos) << line;
+    EXPECT_EQ(count(cfg, " = "), 6 + long(cura_support_line_settings().size()));
+}
+
+TEST(ThreeMF, NamesAreEscapedAndEmptySupportsAreLeftOut) {
+    Mesh model = box({0, 0, 0}, {1, 1, 1}), none;
+    auto cura = unzip(encode_3mf_cura("a&b \"c\"", {{"a&b", model, {}}, {"a&b supports", none, cura_support_mesh_settings()}}));
+    const std::string& xml = cura["3D/3dmodel.model"];
+    EXPECT_EQ(count(xml, "a&b"), 0);
+    EXPECT_NE(xml.find("a&amp;b &quot;c&quot;"), std::string::npos);
+    EXPECT_EQ(elements(xml, "object").size(), 2u);  // the model and its group
+    EXPECT_EQ(count(xml, "cura:support_mesh"), 0);
+    auto prusa = unzip(encode_3mf_prusa("x", {{"x", model, {}}, {"x supports", none, prusa_support_volume_settings()}}));
+    EXPECT_EQ(elements(prusa["Metadata/Slic3r_PE_model.config"], "volume").size(), 1u);
 }
 
 }  // namespace

@@ -1,0 +1,361 @@
+#!/usr/bin/env python3
+"""Every route from our supports to a slicer, against the slicers' own supports, in one run and one profile.
+
+usage: bench/handoff.py [--bin build/clever-support] [--models a,b,...] [--jobs 2] [--work DIR]
+                        [--out bench/results] [--report-only]
+
+Per model (shared models at their benchmark.json scale, orientation kept):
+  generator  clever-support --orient keep (tree) and --strategy columns; `clever-support check` on the tree
+  Cura       none, normal, tree (on <name>.model.stl); ours as model geometry (<name>.supported.stl, supports
+             off); ours as a Cura support mesh (model.stl + supports.stl, per-mesh support_mesh=true,
+             support_mesh_drop_down=false, profile mode "mesh"); our columns baseline the same way
+  Prusa      none, grid, snug (model.stl); ours from our 3MF (<name>.prusa.3mf, per-volume settings);
+             ours as model geometry (supported.stl)
+Each G-code is parsed by slicers/gcode_stats.py (retractions, travel, islands per layer) and deleted.
+Writes <out>/handoff.json (raw + derived) and <out>/handoff.md (tables). See bench/README.md.
+"""
+import argparse
+import concurrent.futures as cf
+import datetime
+import json
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+SHARED = os.path.normpath(os.path.join(ROOT, "..", "shared", "models"))
+SLICE_PY = os.path.join(HERE, "slicers", "slice.py")
+sys.path.insert(0, os.path.join(HERE, "slicers"))
+sys.dont_write_bytecode = True
+import gcode_stats  # noqa: E402
+
+DEFAULT_MODELS = ["u_overhang", "extruder_idler", "rocker_arm", "armadillo", "beast", "nefertiti"]
+
+# Targets of issue 11 (reported against, never tuned to).
+TARGET_TIME = 0.8      # support time ours / the better baseline
+TARGET_FILAMENT = 0.6  # support filament ours / the better baseline
+TARGET_SLICED = 0.9    # sliced support volume / mesh support volume
+
+# key -> (slicer, support mode, what is sliced)
+ROUTES = {
+    "cura_none": ("cura", "none", "model"),
+    "cura_normal": ("cura", "normal", "model"),
+    "cura_tree": ("cura", "tree", "model"),
+    "cura_ours_model": ("cura", "none", "supported"),
+    "cura_ours_mesh": ("cura", "mesh", "support_mesh"),
+    "cura_columns_mesh": ("cura", "mesh", "columns_support_mesh"),
+    "prusa_none": ("prusa", "none", "model"),
+    "prusa_grid": ("prusa", "grid", "model"),
+    "prusa_snug": ("prusa", "snug", "model"),
+    "prusa_ours_3mf": ("prusa", "none", "prusa_3mf"),
+    "prusa_ours_model": ("prusa", "none", "supported"),
+}
+# Routes whose supports print in the slicer's support sections (their islands are counted there).
+SUPPORT_SECTION_ROUTES = {"cura_normal", "cura_tree", "cura_ours_mesh", "cura_columns_mesh", "prusa_grid",
+                          "prusa_snug"}
+# Routes that print our mesh (sliced volume is compared with the mesh volume).
+OURS = {"cura_ours_model": "tree", "cura_ours_mesh": "tree", "cura_columns_mesh": "columns",
+        "prusa_ours_3mf": "tree", "prusa_ours_model": "tree"}
+
+
+def log(msg):
+    print(time.strftime("%H:%M:%S"), msg, flush=True)
+
+
+def cpu_seconds_of(cmd, timeout):
+    """Runs cmd; returns (CompletedProcess or None on timeout, user+sys CPU seconds of it and its children,
+    from /usr/bin/time: per command even when several run at once)."""
+    fd, tfile = tempfile.mkstemp(prefix="cs-handoff-time-")
+    os.close(fd)
+    wrap = ["/usr/bin/time", "-f", "%U %S", "-o", tfile] if os.path.exists("/usr/bin/time") else []
+    try:
+        p = subprocess.run(wrap + cmd, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        p = None
+    cpu = None
+    try:
+        u, s_ = open(tfile).read().strip().splitlines()[-1].split()
+        cpu = float(u) + float(s_)
+    except (OSError, ValueError, IndexError):
+        pass
+    os.remove(tfile)
+    return p, cpu
+
+
+def generate(args, name, path, scale, work, strategy):
+    out = os.path.join(work, name, strategy)
+    cmd = [args.bin, path, "--scale", repr(scale), "--orient", "keep", "--strategy", strategy, "--out", out,
+           "--json", "--no-timings"]
+    p, cpu = cpu_seconds_of(cmd, args.gen_timeout)
+    if p is None or p.returncode != 0:
+        return {"cmd": " ".join(cmd), "error": (p.stderr[-800:] if p else "timeout")}
+    rep = json.loads(p.stdout)
+    return {"cmd": " ".join(cmd), "dir": out, "cpu_s": cpu,
+            "support_volume_mm3": rep["supports"]["support_volume_mm3"],
+            "struts": rep["supports"]["struts"], "samples": rep["overhangs"]["samples"],
+            "triangles": rep["input"]["triangles"]}
+
+
+def check(args, name, gen):
+    stem = os.path.join(gen["dir"], name)
+    cmd = [args.bin, "check", "--model", stem + ".model.stl", "--supports", stem + ".supports.stl", "--json"]
+    p, _ = cpu_seconds_of(cmd, args.gen_timeout)
+    if p is None:
+        return {"ok": False, "error": "timeout"}
+    try:
+        j = json.loads(p.stdout)
+    except ValueError:
+        return {"ok": False, "error": (p.stderr or p.stdout)[-400:]}
+    c = j.get("coverage", {})
+    pts = c.get("points") or 0
+    return {"ok": bool(j.get("ok")), "coverage": (c.get("covered", 0) + c.get("exempt", 0)) / pts if pts else 1.0}
+
+
+def inputs_of(what, name, tree, columns):
+    t = os.path.join(tree["dir"], name)
+    c = os.path.join(columns["dir"], name) if columns and "dir" in columns else None
+    return {
+        "model": ([t + ".model.stl"], []),
+        "supported": ([t + ".supported.stl"], []),
+        "support_mesh": ([t + ".model.stl"], [t + ".supports.stl"]),
+        "columns_support_mesh": (([c + ".model.stl"], [c + ".supports.stl"]) if c else None),
+        "prusa_3mf": ([t + ".prusa.3mf"], []),
+    }[what]
+
+
+def slice_route(args, key, name, tree, columns, work):
+    slicer, support, what = ROUTES[key]
+    ins = inputs_of(what, name, tree, columns)
+    if ins is None:
+        return {"error": "no columns output"}
+    models, meshes = ins
+    out_dir = os.path.join(work, name, "slices", key)
+    cmd = [sys.executable, SLICE_PY, "--slicer", slicer, "--support", support, "--json", "--timeout",
+           str(args.slice_timeout), "--out-dir", out_dir] + sum((["--support-mesh", m] for m in meshes), []) + models
+    p, cpu = cpu_seconds_of(cmd, args.slice_timeout + 120)
+    if p is None or p.returncode != 0:
+        return {"error": (p.stderr.strip()[-600:] if p else "timeout"), "cmd": " ".join(cmd)}
+    res = json.loads(p.stdout)
+    out = {k: res[k] for k in ("grams", "print_time_s", "filament_mm3", "slice_seconds")}
+    out["cpu_s"] = cpu
+    out["gcode"] = gcode_stats.parse(os.path.join(out_dir, "out.gcode"))
+    # Keep the command, settings and logs; drop the bulky G-code and meshes.
+    for f in ("out.gcode", "merged.stl", "support_mesh.stl"):
+        try:
+            os.remove(os.path.join(out_dir, f))
+        except OSError:
+            pass
+    shutil.rmtree(os.path.join(out_dir, "prusa-datadir"), ignore_errors=True)
+    return out
+
+
+def ratio(a, b):
+    return a / b if a is not None and b not in (None, 0) else None
+
+
+def derive(m):
+    """Support-only numbers per route (route − the bare model in the same slicer) and the target ratios."""
+    s = m["slices"]
+    d = {}
+    for key, r in s.items():
+        if "error" in r or key.endswith("_none"):
+            continue
+        none = s.get(ROUTES[key][0] + "_none", {})
+        if "error" in none or not none:
+            continue
+        g, gn = r["gcode"], none["gcode"]
+        row = {
+            "support_g": r["grams"] - none["grams"],
+            "support_mm3": r["filament_mm3"] - none["filament_mm3"],
+            "support_min": (r["print_time_s"] - none["print_time_s"]) / 60,
+            "retractions": g["retractions"] - gn["retractions"],
+            "travel_m": (g["travel_mm"] - gn["travel_mm"]) / 1000,
+            "support_islands": (g["support_islands"] if key in SUPPORT_SECTION_ROUTES
+                                else g["islands"] - gn["islands"]),
+            "support_islands_max_per_layer": (g["support_islands_max_per_layer"] if key in SUPPORT_SECTION_ROUTES
+                                              else None),
+            "support_islands_by_eighth": g["support_islands_by_eighth"] if key in SUPPORT_SECTION_ROUTES else None,
+        }
+        if key in OURS:
+            mesh = m["gen"][OURS[key]].get("support_volume_mm3")
+            row["sliced_over_mesh"] = ratio(row["support_mm3"], mesh)
+            if key in SUPPORT_SECTION_ROUTES:
+                row["support_section_over_mesh"] = ratio(g["support_extruded_mm3"], mesh)
+        d[key] = row
+
+    def best(keys, field):
+        vals = [d[k][field] for k in keys if k in d]
+        return min(vals) if len(vals) == len(keys) else None
+
+    t = {}
+    if "cura_ours_mesh" in d:
+        t["cura_mesh_time_vs_better_cura"] = ratio(d["cura_ours_mesh"]["support_min"],
+                                                   best(["cura_normal", "cura_tree"], "support_min"))
+        t["cura_mesh_filament_vs_better_cura"] = ratio(d["cura_ours_mesh"]["support_mm3"],
+                                                       best(["cura_normal", "cura_tree"], "support_mm3"))
+        t["cura_mesh_sliced_over_mesh"] = d["cura_ours_mesh"].get("sliced_over_mesh")
+    if "cura_ours_model" in d and "cura_ours_mesh" in d:
+        t["cura_mesh_time_vs_ours_as_model"] = ratio(d["cura_ours_mesh"]["support_min"],
+                                                     d["cura_ours_model"]["support_min"])
+    if "cura_columns_mesh" in d and "cura_ours_mesh" in d:
+        t["cura_mesh_filament_vs_columns_mesh"] = ratio(d["cura_ours_mesh"]["support_mm3"],
+                                                        d["cura_columns_mesh"]["support_mm3"])
+    if "prusa_ours_3mf" in d and "prusa_snug" in d:
+        t["prusa_3mf_time_vs_snug"] = ratio(d["prusa_ours_3mf"]["support_min"], d["prusa_snug"]["support_min"])
+        t["prusa_3mf_filament_vs_snug"] = ratio(d["prusa_ours_3mf"]["support_mm3"], d["prusa_snug"]["support_mm3"])
+        t["prusa_3mf_sliced_over_mesh"] = d["prusa_ours_3mf"].get("sliced_over_mesh")
+    if "prusa_ours_3mf" in d and "prusa_ours_model" in d:
+        t["prusa_3mf_time_vs_ours_as_model"] = ratio(d["prusa_ours_3mf"]["support_min"],
+                                                     d["prusa_ours_model"]["support_min"])
+    return d, t
+
+
+TARGETS = [  # (ratio key, limit, direction) — met when value <= limit ("max") or >= limit ("min")
+    ("cura_mesh_time_vs_better_cura", TARGET_TIME, "max"),
+    ("cura_mesh_filament_vs_better_cura", TARGET_FILAMENT, "max"),
+    ("cura_mesh_sliced_over_mesh", TARGET_SLICED, "min"),
+    ("prusa_3mf_time_vs_snug", TARGET_TIME, "max"),
+    ("prusa_3mf_filament_vs_snug", TARGET_FILAMENT, "max"),
+    ("prusa_3mf_sliced_over_mesh", TARGET_SLICED, "min"),
+]
+
+
+def fmt(v, spec="{:.2f}"):
+    return "–" if v is None else spec.format(v)
+
+
+def report_md(data):
+    st = data["stamp"]
+    L = ["# Handing our supports to the slicers: every route, one run, one profile\n",
+         f"_Run {st['date']} on {st['nproc']} cores (load average at start {st['load']}), git commit "
+         f"`{st['commit']}`, {st['jobs']} slices at a time; CPU total {st.get('cpu_total_s', 0):.0f} s "
+         f"(generator + slicers)._\n",
+         "Profile: bench/slicers/profile.json (both slicers). Models: shared models at their benchmark.json scale, "
+         "orientation kept. *Support* numbers are the route minus the bare model sliced in the same slicer "
+         "and run: grams, minutes, retractions, travel (m). *Islands*: support islands summed over layers (a new "
+         "island after > 1 mm of travel inside support sections; for routes that print our supports as model "
+         "geometry: all islands − the bare model's). *Sliced/mesh*: support filament the slicer printed over the "
+         "support mesh volume (our routes).\n"]
+    names = {"cura_normal": "Cura normal", "cura_tree": "Cura tree", "cura_ours_model": "ours as model",
+             "cura_ours_mesh": "ours as support mesh", "cura_columns_mesh": "our columns as support mesh",
+             "prusa_grid": "Prusa grid", "prusa_snug": "Prusa snug", "prusa_ours_3mf": "ours from our 3MF",
+             "prusa_ours_model": "ours as model (STL)"}
+    for slicer, title in (("cura", "CuraEngine 4.13"), ("prusa", "PrusaSlicer 2.5")):
+        L.append(f"\n## {title}\n")
+        L.append("| model | route | support g | support min | retractions | travel m | islands | max/layer | "
+                 "sliced/mesh | support sections/mesh |")
+        L.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+        for name, m in data["models"].items():
+            for key, row in m.get("derived", {}).items():
+                if ROUTES[key][0] != slicer:
+                    continue
+                L.append(f"| {name} | {names[key]} | {row['support_g']:.2f} | {row['support_min']:.0f} | "
+                         f"{row['retractions']} | {row['travel_m']:.1f} | {row['support_islands']} | "
+                         f"{fmt(row['support_islands_max_per_layer'], '{}')} | {fmt(row.get('sliced_over_mesh'))} | "
+                         f"{fmt(row.get('support_section_over_mesh'))} |")
+            for key, r in m["slices"].items():
+                if ROUTES[key][0] == slicer and "error" in r:
+                    L.append(f"| {name} | {key} | failed: {r['error'][-200:].replace(chr(10), ' ')} |||||||| |")
+    L.append("\n## Against the targets (ratios of support-only numbers, same slicer, same run)\n")
+    L.append("| model | coverage | " + " | ".join(k for k, _, _ in TARGETS) + " |")
+    L.append("|---|---:|" + "---:|" * len(TARGETS))
+    for name, m in data["models"].items():
+        t = m.get("targets", {})
+        cov = m.get("check", {})
+        L.append(f"| {name} | {fmt(cov.get('coverage'), '{:.2%}')}{'' if cov.get('ok') else ' ✗'} | " +
+                 " | ".join(fmt(t.get(k)) for k, _, _ in TARGETS) + " |")
+    s = data["summary"]
+    L.append("| **median** | | " + " | ".join(fmt(s["median"].get(k)) for k, _, _ in TARGETS) + " |")
+    L.append("| **worst** | | " + " | ".join(fmt(s["worst"].get(k)) for k, _, _ in TARGETS) + " |")
+    L.append("| **target** | | " + " | ".join(("≤ " if d == "max" else "≥ ") + f"{v}" for _, v, d in TARGETS) + " |")
+    L.append("| **met on** | | " + " | ".join(f"{s['met'].get(k, 0)}/{s['n'].get(k, 0)}" for k, _, _ in TARGETS)
+             + " |")
+    extra = ["cura_mesh_time_vs_ours_as_model", "prusa_3mf_time_vs_ours_as_model", "cura_mesh_filament_vs_columns_mesh"]
+    L.append("\nOther ratios (median, worst): " + "; ".join(
+        f"{k} {fmt(s['median'].get(k))}, {fmt(s['worst'].get(k))}" for k in extra) + ".\n")
+    return "\n".join(L) + "\n"
+
+
+def summarize(data):
+    med, worst, met, n = {}, {}, {}, {}
+    keys = [(k, d) for k, _, d in TARGETS] + [("cura_mesh_time_vs_ours_as_model", "max"),
+                                               ("prusa_3mf_time_vs_ours_as_model", "max"),
+                                               ("cura_mesh_filament_vs_columns_mesh", "max")]
+    limits = {k: v for k, v, _ in TARGETS}
+    for k, d in keys:
+        vals = [m["targets"][k] for m in data["models"].values() if m.get("targets", {}).get(k) is not None]
+        if not vals:
+            continue
+        med[k] = statistics.median(vals)
+        worst[k] = max(vals) if d == "max" else min(vals)
+        if k in limits:
+            n[k] = len(vals)
+            met[k] = sum((v <= limits[k]) if d == "max" else (v >= limits[k]) for v in vals)
+    data["summary"] = {"median": med, "worst": worst, "met": met, "n": n}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--bin", default=os.path.join(ROOT, "build", "clever-support"))
+    ap.add_argument("--models", default=",".join(DEFAULT_MODELS))
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--work", default=os.path.join(ROOT, "build", "bench-handoff"))
+    ap.add_argument("--out", default=os.path.join(HERE, "results"))
+    ap.add_argument("--gen-timeout", type=float, default=600)
+    ap.add_argument("--slice-timeout", type=float, default=900)
+    ap.add_argument("--report-only", action="store_true", help="redo handoff.md from handoff.json")
+    args = ap.parse_args()
+    jpath, mpath = os.path.join(args.out, "handoff.json"), os.path.join(args.out, "handoff.md")
+    if args.report_only:
+        data = json.load(open(jpath))
+        summarize(data)
+        open(mpath, "w").write(report_md(data))
+        return 0
+    bench = {os.path.splitext(m["file"])[0]: (os.path.join(SHARED, m["file"]), float(m["scale"]))
+             for m in json.load(open(os.path.join(SHARED, "benchmark.json")))["models"]}
+    commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
+    data = {"stamp": {"date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC"),
+                      "nproc": os.cpu_count(), "load": " ".join(open("/proc/loadavg").read().split()[:3]),
+                      "commit": commit, "jobs": args.jobs, "profile": "bench/slicers/profile.json"},
+            "models": {}}
+    cpu_total = 0.0
+    os.makedirs(args.work, exist_ok=True)
+    for name in [n.strip() for n in args.models.split(",") if n.strip()]:
+        if name not in bench:
+            print(f"unknown model {name}", file=sys.stderr)
+            return 2
+        path, scale = bench[name]
+        log(f"{name}: generating (scale {scale})")
+        m = {"scale": scale, "gen": {s: generate(args, name, path, scale, args.work, s) for s in ("tree", "columns")}}
+        cpu_total += sum(g.get("cpu_s") or 0 for g in m["gen"].values())
+        if "error" in m["gen"]["tree"]:
+            m["error"] = m["gen"]["tree"]["error"]
+            data["models"][name] = m
+            continue
+        m["check"] = check(args, name, m["gen"]["tree"])
+        with cf.ThreadPoolExecutor(args.jobs) as ex:
+            futs = {k: ex.submit(slice_route, args, k, name, m["gen"]["tree"], m["gen"]["columns"], args.work)
+                    for k in ROUTES}
+            m["slices"] = {k: f.result() for k, f in futs.items()}
+        for k, r in m["slices"].items():
+            cpu_total += r.get("cpu_s") or 0
+            log(f"{name} {k}: " + (r["error"][-200:] if "error" in r else
+                                   f"{r['grams']:.2f} g {r['print_time_s'] / 60:.0f} min, cpu {r['cpu_s'] or 0:.0f} s"))
+        m["derived"], m["targets"] = derive(m)
+        data["models"][name] = m
+        data["stamp"]["cpu_total_s"] = cpu_total
+        summarize(data)
+        os.makedirs(args.out, exist_ok=True)
+        json.dump(data, open(jpath, "w"), indent=1)
+        open(mpath, "w").write(report_md(data))
+    log(f"done, CPU {cpu_total:.0f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
