@@ -279,6 +279,34 @@ TEST(ScadEdit, BrokenEditsNameTheLine) {
     }
 }
 
+TEST(ScadEdit, MalformedEditFlagsAreUsageErrors) {
+    TempDir d;
+    std::string in = d / "tee.stl";
+    write_stl(in, t_shape());
+    for (const std::string flags : {"--block 1,2,3", "--block 0,0,0,1,1,x", "--support-point 1,2", "-D w=3"}) {
+        auto r = cs(quote(in) + " --orient keep -q --out " + quote(d / "o") + " " + flags);
+        EXPECT_EQ(r.code, 2) << flags << ": " << r.out;
+        EXPECT_NE(r.out.find(flags.substr(0, 2) == "-D" ? "-D" : flags.substr(0, flags.find(' '))), std::string::npos) << r.out;
+    }
+    std::string config = d / "edits.json";
+    write_text(config, R"({"block": [[-11, -6, -1, -2.2, 6, 10.5]], "support-point": [[0, 0]]})");
+    auto r = cs(quote(in) + " --orient keep -q --out " + quote(d / "o") + " --config " + quote(config));
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_NE(r.out.find("support-point"), std::string::npos) << r.out;
+    EXPECT_FALSE(fs::exists(d / "o"));
+}
+
+TEST(ScadEdit, ConfigBlockersAreTheFlagsBlockers) {
+    TempDir d;
+    std::string in = d / "tee.stl";
+    write_stl(in, t_shape());
+    std::string config = d / "edits.json";
+    write_text(config, R"({"block": [[-11, -6, -1, -2.2, 6, 10.5]]})");
+    ASSERT_EQ(cs(quote(in) + " --orient keep --no-timings -q --out " + quote(d / "a") + " --config " + quote(config)).code, 0);
+    ASSERT_EQ(cs(quote(in) + " --orient keep --no-timings -q --out " + quote(d / "b") + " --block -11,-6,-1,-2.2,6,10.5").code, 0);
+    EXPECT_TRUE(read_text(d / "a/tee.supports.stl") == read_text(d / "b/tee.supports.stl"));
+}
+
 // -------------------------------------------------------------------------- .scad in, rendered
 
 const char* kPart = R"(// A T whose plate width is a parameter.
