@@ -53,7 +53,7 @@ struct ParamFlags {
             {"clearance", &Params::model_clearance}};
         for (const auto& [key, value] : cfg.items()) {
             auto where = "--config " + config + ": \"" + key + "\"";
-            if (key == "preset" || key == "description" || key == "block" || key == "support-point") continue;  // edits: see edits()
+            if (key == "preset" || key == "description" || key == "block" || key == "support-point") continue;  // edits: see edits_from()
             if (auto it = numbers.find(key); it != numbers.end()) {
                 if (!value.is_number()) throw ParameterError(where + " must be a number");
                 p.*(it->second) = value.get<double>();
