@@ -1,7 +1,6 @@
 #include "check/check.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numbers>
 #include <unordered_map>
@@ -151,7 +150,6 @@ bool rests_on_model(const ModelQuery& q, const Shell& s, double within) {
 }
 
 void flag(CheckResult& r, std::string what, const Vec3& at) {
-    if (std::getenv("CS_CHECK_DEBUG")) std::fprintf(stderr, "FLAG %s\n", what.c_str());
     if (r.flagged.size() < kMaxFlags) r.flagged.push_back({std::move(what), at});
 }
 
@@ -181,6 +179,14 @@ void check_shape(const Shell& s, const Params& p, const CheckOptions& o, CheckRe
     if (w > 0) r.worst_length_to_width = std::max(r.worst_length_to_width, distance(s.top, s.bottom) / w);
 }
 
+// Inside the (repaired, closed) model: the first face a ray meets faces away from the point. One
+// ray that stops at its first hit, where the winding test lists every face along three.
+bool inside_by_first_face(const ModelQuery& q, const Vec3& p) {
+    const Vec3 dir{0.5773, 0.5781, -0.5767};  // irrational-looking: no grazing of axis-aligned faces
+    auto hit = q.first_hit(p, dir);
+    return hit && dot(face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]), dir) > 0;
+}
+
 // The deepest point of a solid's surface inside the model, beyond what its contact ends may
 // reach. A face that does not touch the model's surface lies wholly on one side of it: one inside
 // test decides for all of it. A face that does is probed by halving; a piece whose bounding ball
@@ -207,7 +213,7 @@ struct DepthProbe {
         const Vec3 g = (a + b + c) / 3.0;
         const double r = std::max({distance(g, a), distance(g, b), distance(g, c)});
         const double d = std::sqrt(q.squared_distance(g));
-        const bool in = q.inside(g);
+        const bool in = inside_by_first_face(q, g);
         if (!in && (d > r || r <= tolerance)) return;  // outside, or nowhere deeper than r
         if (in && d + r <= tolerance) return;
         if (in && d > r && d - r > std::max({tolerance, end_depth_top, end_depth_bottom})) return record(g, d);
@@ -243,7 +249,7 @@ void check_penetration(const ModelQuery& q, const Shell& s, const Tolerances& t,
     std::vector<signed char> inside(s.mesh.vertices.size(), -1);
     for (const Triangle* f : apart) {
         auto v = (*f)[0];
-        if (inside[v] < 0) inside[v] = q.inside(s.mesh.vertices[v]);
+        if (inside[v] < 0) inside[v] = inside_by_first_face(q, s.mesh.vertices[v]);
         if (inside[v]) probe.probe(s.mesh.vertices[(*f)[0]], s.mesh.vertices[(*f)[1]], s.mesh.vertices[(*f)[2]], 0);
     }
     if (probe.worst_depth > r.max_penetration) r.max_penetration = probe.worst_depth, r.max_penetration_at = probe.worst_at;
@@ -259,7 +265,6 @@ void check_air_gap(const Shell& s, const Tolerances& t, CheckResult& r) {
     if (!s.top_contact) return;
     if (s.top_gap < r.min_air_gap) r.min_air_gap = s.top_gap, r.min_air_gap_at = s.top;
     if (s.top_gap < t.gap_min) {
-        if (std::getenv("CS_CHECK_DEBUG")) std::fprintf(stderr, "FUSED w=%.2f gap=%.3f off=%.2f,%.2f top=%.2f,%.2f,%.2f\n", s.top_width, s.top_gap, s.gap_at.x-s.top.x, s.gap_at.y-s.top.y, s.top.x, s.top.y, s.top.z);
         ++r.fused_contacts;
         char b[96];
         std::snprintf(b, sizeof b, " is fused to the model: air gap %.2f mm (at least %.2f needed) at ", s.top_gap, t.gap_min);
@@ -368,7 +373,6 @@ void check_coverage(const Mesh& model, const ModelQuery& q, const std::vector<Sh
             continue;
         }
         r.uncovered_area += x->area;
-        if (std::getenv("CS_CHECK_DEBUG")) std::fprintf(stderr, "UNCOVERED kind=%d at %.2f %.2f %.2f d=%.2f\n", int(x->kind), x->p.x, x->p.y, x->p.z, d);
         if (r.uncovered.size() < 10) r.uncovered.push_back(x->p);
     }
 }
@@ -384,31 +388,17 @@ CheckResult check_supports(const Mesh& model_in, const Mesh& supports, const Par
     r.reach = t.reach;
     r.model_closed = is_watertight(model);
 
-    auto t0 = std::chrono::steady_clock::now();
     std::vector<Shell> shells = shells_of(supports);
     r.bodies = shells.size();
-    auto t0b = std::chrono::steady_clock::now();
-    if (std::getenv("CS_CHECK_TIMES")) std::fprintf(stderr, "split %.2f\n", std::chrono::duration<double>(t0b-t0).count());
-    double ta = 0, tb = 0, tc = 0;
     for (auto& s : shells) {
-        auto a0 = std::chrono::steady_clock::now();
         find_top_contact(q, s, t);
         s.bottom_on_model = s.zmin > kOnBed && rests_on_model(q, s, t.gap + (t.gap - t.gap_min));
-        auto a1 = std::chrono::steady_clock::now();
         check_shape(s, p, o, r);
         check_air_gap(s, t, r);
-        auto a2 = std::chrono::steady_clock::now();
         if (r.model_closed) check_penetration(q, s, t, r);
-        auto a3 = std::chrono::steady_clock::now();
-        ta += std::chrono::duration<double>(a1-a0).count(); tb += std::chrono::duration<double>(a2-a1).count(); tc += std::chrono::duration<double>(a3-a2).count();
     }
-    if (std::getenv("CS_CHECK_TIMES")) std::fprintf(stderr, "contact %.2f shape %.2f pen %.2f\n", ta, tb, tc);
-    auto t1 = std::chrono::steady_clock::now();
     check_grounding(q, shells, t, r);
-    auto t2 = std::chrono::steady_clock::now();
     check_coverage(model, q, shells, p, t, r);
-    auto t3 = std::chrono::steady_clock::now();
-    if (std::getenv("CS_CHECK_TIMES")) std::fprintf(stderr, "shells %.2f ground %.2f cover %.2f\n", std::chrono::duration<double>(t1-t0).count(), std::chrono::duration<double>(t2-t1).count(), std::chrono::duration<double>(t3-t2).count());
     return r;
 }
 

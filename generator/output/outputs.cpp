@@ -54,6 +54,7 @@ json supports_json(const Supports& s) {
             {"model_contacts", st.model_contacts},
             {"pillars", st.pillars},
             {"touching_samples", st.touching},
+            {"bridged_samples", st.bridged},
             {"internal_samples", st.internal},
             {"bends", st.steps},
             {"tight", st.tight},

@@ -6,18 +6,12 @@
 #include <unordered_map>
 
 #include "query/model_query.hpp"
+#include "struts/placement.hpp"
 
 namespace cs {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-// A tip under a slope or beside a wall is lowered until its corners clear the model by the gap:
-// by at most this share of its length (it must still taper up to the overhang), refined over a
-// few rounds because a lowered corner sees other geometry.
-constexpr double kTipMaxLowering = 0.8;
-constexpr int kTipLoweringRounds = 10;
-// A tip moved off a wall leans at most this share of the critical angle's slope.
-constexpr double kTipLean = 0.9;
 
 // Unit directions of the cone fan: the axis, then rings at half and 95% of the critical angle.
 // 95% keeps a contact tip (which sits above its model point) inside the cone.
@@ -181,17 +175,23 @@ private:
                 continue;
             }
             if (free < 2 * tip) {
-                Pillar pillar = pillar_under(s.p, below, hit.has_value());
-                if (sweep_meets_boxes(pillar.top, pillar.bottom, p_.d_min, 0, p_.keep_out)) continue;  // a user's blocker
-                t_.pillars.push_back(pillar);
-                ++t_.stats.pillars;
+                auto fit = hang_pillar(s.p);
+                t_.stats.bridged += fit == PillarFit::TooLow;
+                t_.stats.dropped += fit == PillarFit::NoRoom;
                 continue;
             }
-            int leaf = add_node(leaf_position(s.p - Vec3{0, 0, tip}), NodeKind::Leaf, s.p, p_.d_min);
-            t_.nodes[leaf].tip = tip_top(s.p, std::nullopt, &t_.nodes[leaf].p);
-            // A leaf in a crevice that no strut can leave is dropped now, before others merge into it.
-            if (!can_escape(leaf)) {
-                t_.nodes[leaf].kind = NodeKind::Dropped;
+            const Vec3 top = place_tip_top(model_, s.p, p_);
+            Vec3 at = leaf_position({top.x, top.y, s.p.z - tip});
+            // A tip that would graze the model beside it moves its foot a little where it is clear.
+            if (auto clear = clear_tip_foot(model_, at, top, p_); clear && can_escape(*clear, p_.d_min)) at = *clear;
+            // A leaf in a crevice that no strut can leave, or whose tip's foot would lie in the model
+            // (a low overhang over a step), is no leaf: a pillar stands there if one fits (a slot too low for a tip and a strut), else
+            // the sample is dropped now, before others merge into it.
+            const bool stuck = !can_escape(at, p_.d_min) || !square_is_clear(model_, at, p_.d_min);
+            if (stuck && free <= safe_length(p_, p_.d_min, 0) && hang_pillar(s.p) == PillarFit::Fits) continue;
+            int leaf = add_node(at, stuck ? NodeKind::Dropped : NodeKind::Leaf, s.p, p_.d_min);
+            t_.nodes[leaf].tip = top;
+            if (stuck) {
                 ++t_.stats.dropped;
                 continue;
             }
@@ -199,83 +199,17 @@ private:
         }
     }
 
-    // The top of a tip: one gap below the sample, lowered until every corner of its square top is
-    // at least a gap below the model (under a rising slope or in a crease a corner would otherwise
-    // touch the print), by at most kTipMaxLowering of its length so it stays a tip. A corner that
-    // lowering cannot clear lies beside a wall: the top then moves away from it, by at most half
-    // the tip's width (the wall below carries the overhang next to it).
-    // A pillar's top (`floor`: its bottom) comes no lower than a layer above its bottom.
-    // A leaf's tip (`base`: the leaf it stands on) leans no further than the cones allow.
-    Vec3 tip_top(const Vec3& sample, std::optional<double> floor = std::nullopt, const Vec3* base = nullptr) const {
-        Vec3 top = sample - Vec3{0, 0, p_.gap};
-        const double h = 0.5 * p_.tip_diameter;
-        double lowest = top.z - kTipMaxLowering * p_.tip_length;
-        if (floor) lowest = std::min(top.z, std::max(lowest, *floor + p_.layer_height));
-        // No lower than the lean allows over the leaf it stands on.
-        auto lowest_at = [&](const Vec3& t) {
-            return base ? std::max(lowest, base->z + horizontal_distance(t, *base) / (kTipLean * tan_c_)) : lowest;
-        };
-        double moved = 0;
-        for (int round = 0; round < kTipLoweringRounds; ++round) {
-            double lower = 0;
-            Vec3 away;
-            for (auto [sx, sy] : {std::pair{0, 0}, {1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
-                double need = p_.gap - room_above(top + Vec3{sx * h, sy * h, 0});
-                if (need <= 1e-9) continue;
-                lower = std::max(lower, need);
-                away = away - Vec3{double(sx), double(sy), 0};
-            }
-            if (lower <= 1e-9) break;
-            const double floor_here = std::min(top.z, lowest_at(top));
-            if (top.z - lower >= floor_here || norm(away) == 0 || moved >= h) {
-                top.z = std::max(floor_here, top.z - lower);
-                continue;
-            }
-            const double step = std::min(0.5 * h, h - moved);
-            const Vec3 to = top + normalized(away) * step;
-            if (to.z < lowest_at(to)) {
-                top.z = floor_here;
-                continue;
-            }
-            top = to;
-            moved += step;
+    // Under a low overhang a pillar, placed by its whole footprint (struts/placement.hpp); where
+    // none fits the print bridges the slot (too low) or the sample is given up (too tight).
+    PillarFit hang_pillar(const Vec3& sample) {
+        auto placed = fit_pillar(model_, sample, p_);
+        if (placed.fit == PillarFit::Fits && sweep_meets_boxes(placed.pillar.top, placed.pillar.bottom, p_.d_min, 0, p_.keep_out))
+            return PillarFit::NoRoom;  // it would stand in a user's blocker
+        if (placed.fit == PillarFit::Fits) {
+            t_.pillars.push_back(placed.pillar);
+            ++t_.stats.pillars;
         }
-        return top;
-    }
-
-    // A short vertical pillar under the sample, standing on the bed or a gap above the model at
-    // `below`. Its top clears the model as a tip's does; where that moves the top aside, the whole
-    // pillar moves with it (it is too short to lean) and stands on what is below its new place.
-    // Where moving it leaves less than a layer of pillar, it stays as it was.
-    Pillar pillar_under(const Vec3& sample, double below, bool on_model) const {
-        const Pillar plain{sample - Vec3{0, 0, p_.gap}, {sample.x, sample.y, on_model ? below + p_.gap : 0.0}, on_model};
-        Vec3 top = tip_top(sample, plain.bottom.z);
-        bool moved_on_model = on_model;
-        double foot = on_model ? below : 0.0;
-        if (horizontal_distance(top, sample) > 1e-9) {
-            auto hit = model_.first_hit(Vec3{top.x, top.y, sample.z - 1e-4}, {0, 0, -1});
-            moved_on_model = hit.has_value();
-            foot = hit ? hit->point.z : 0.0;
-        }
-        Vec3 bottom{top.x, top.y, moved_on_model ? foot + p_.gap : 0.0};
-        if (top.z - bottom.z < p_.layer_height) return plain;
-        return {top, bottom, moved_on_model};
-    }
-
-    // Vertical room from p up to the model; minus the depth when p is inside it. A ray running
-    // along a vertical face (a tip right under a rim) goes on past it.
-    double room_above(const Vec3& p) const {
-        const double d = std::sqrt(model_.squared_distance(p));
-        if (d > 1e-3 && model_.inside(p)) return -d;  // on the surface: judged by what is above
-        Vec3 from = p;
-        for (int grazes = 0; grazes < 8; ++grazes) {
-            auto hit = model_.first_hit(from, {0, 0, 1});
-            if (!hit) return INFINITY;
-            const Vec3 n = face_normal_unnormalized(model_.mesh(), model_.mesh().faces[hit->face]);
-            if (std::abs(n.z) > 1e-9 * norm(n)) return hit->point.z - p.z;
-            from = hit->point + Vec3{0, 0, 1e-6};
-        }
-        return INFINITY;
+        return placed.fit;
     }
 
     // Can a strut of width w leave point a at all: is a short strut along some fan direction
@@ -290,7 +224,6 @@ private:
         }
         return false;
     }
-    bool can_escape(int id) const { return can_escape(t_.nodes[id].p, width_[id]); }
 
     // A leaf hangs straight below its sample unless the model is too close beside it (a sample
     // next to a wall): then it moves away from the wall, slanting its tip, so the strut below it
@@ -549,7 +482,8 @@ private:
             }
             case Target::Model:
             case Target::SteepModel:
-                connect(id, add_node(c.point, NodeKind::ModelContact, c.contact, bottom_width(id, c.point)));
+                connect(id, add_node(c.point, NodeKind::ModelContact, contact_under_tip(model_, c.contact, c.point.z, p_),
+                                     bottom_width(id, c.point)));
                 ++t_.stats.model_contacts;
                 break;
             case Target::Bed: {

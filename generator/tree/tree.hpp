@@ -55,6 +55,7 @@ struct TreeStats {
     std::size_t steps = 0;                // bends taken to get out of a tight spot
     std::size_t tight = 0;                // struts that touch the model's clearance zone (no air)
     std::size_t dropped = 0;              // samples given up: in crevices no strut fits through
+    std::size_t bridged = 0;              // under a slot too low for a pillar between its gaps: bridged
     std::size_t dropped_branches = 0;     // nodes with nowhere to go, dropped with what they carried
     std::size_t undone = 0;               // joins taken back because the joined node had nowhere to go
 };

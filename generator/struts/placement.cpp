@@ -1,0 +1,211 @@
+#include "struts/placement.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
+
+#include "query/model_query.hpp"
+
+namespace cs {
+namespace {
+
+// How far a tip's top or a pillar may move off its sample: well inside the reach of its contact
+// (the lattice cell's radius, (sqrt 2 / 2) * sampling, for any sampling of a millimetre or more).
+constexpr double kMaxShift = 0.5;
+// A footprint counts as level when its floor's heights differ by no more than this: such a
+// placement is preferred, it stands on all of its foot.
+constexpr double kLevel = 0.05;
+
+// Straight below the sample first, then rings of eight directions a quarter and a half millimetre
+// aside: nearest first, so a top or a pillar moves no further than it must.
+const std::vector<Vec3>& nearby_offsets() {
+    static const std::vector<Vec3> offsets = [] {
+        std::vector<Vec3> out{{0, 0, 0}};
+        for (double r : {0.5 * kMaxShift, kMaxShift})
+            for (int i = 0; i < 8; ++i) out.push_back({r * std::cos(i * M_PI / 4), r * std::sin(i * M_PI / 4), 0});
+        return out;
+    }();
+    return offsets;
+}
+
+// The centre and the four corners of a horizontal square of side w around c.
+std::array<Vec3, 5> square_points(const Vec3& c, double w) {
+    const double h = 0.5 * w;
+    return {c, c + Vec3{h, h, 0}, c + Vec3{h, -h, 0}, c + Vec3{-h, -h, 0}, c + Vec3{-h, h, 0}};
+}
+
+// How far the overhang above a square's corners comes down below `z` (0 when it does not),
+// nullopt when nothing is above the centre.
+std::optional<double> ceiling_drop(const ModelQuery& model, const std::array<Vec3, 5>& square, double z) {
+    double drop = 0;
+    for (size_t i = 0; i < square.size(); ++i) {
+        auto hit = model.first_hit(square[i], {0, 0, 1});
+        if (!hit) {
+            if (i == 0) return std::nullopt;
+            continue;  // this corner reaches past the overhang's edge
+        }
+        drop = std::max(drop, z - hit->point.z);
+    }
+    return drop;
+}
+
+// How much lower than a gap under the sample a tip's top may sit and still count as a contact.
+double allowed_drop(const Params& p) { return contact_tolerance(p) - p.gap - 0.05; }
+
+// A foot bears on the model near its axis, not at a corner: on a slope, a foot a gap above its
+// highest corner would hang over the model everywhere else (and `check` would not see it standing).
+// So its gap is measured from the highest floor under a central cross (the centre and four
+// points this share of the foot's width out along its axes), and a placement is preferred where
+// every corner then keeps at least kMinFootAir of air.
+constexpr double kBearing = 0.45;
+// Air kept under the highest corner of a foot on a slope: a quarter of the default gap, enough
+// that no corner fuses to the model.
+constexpr double kMinFootAir = 0.05;
+// To keep that air a foot may stand this much more than a gap above its cross's floor (a fifth
+// of the default gap: it still bears there).
+constexpr double kMaxFootRaise = 0.04;
+
+struct Floor {
+    double z = 0;          // the gap under the foot is measured from here
+    bool on_model = false;
+    bool level = false;    // corners and centre within kLevel of each other
+    bool clear = false;    // every corner keeps kMinFootAir under a foot a gap above z
+};
+
+struct Span {
+    double high = -INFINITY, low = INFINITY;
+};
+
+// Highest and lowest of the model (or the bed, 0) straight below the points.
+template <size_t N>
+Span heights_below(const ModelQuery& model, const std::array<Vec3, N>& points, bool& on_model) {
+    Span s;
+    for (const auto& q : points) {
+        auto hit = model.first_hit(q, {0, 0, -1});
+        on_model = on_model || hit.has_value();
+        double z = hit ? hit->point.z : 0.0;
+        s.high = std::max(s.high, z), s.low = std::min(s.low, z);
+    }
+    return s;
+}
+
+// What a square foot of width w around c (at the height rays start from) stands on.
+Floor floor_under(const ModelQuery& model, const Vec3& c, double w, double gap) {
+    const double b = kBearing * w;
+    const std::array<Vec3, 5> cross{c, c + Vec3{b, 0, 0}, c + Vec3{-b, 0, 0}, c + Vec3{0, b, 0}, c + Vec3{0, -b, 0}};
+    Floor fl;
+    const Span corners = heights_below(model, square_points(c, w), fl.on_model);
+    const Span central = heights_below(model, cross, fl.on_model);
+    const double corner_air_floor = corners.high - (gap - kMinFootAir);
+    fl.z = std::max(central.high, std::min(corner_air_floor, central.high + kMaxFootRaise));
+    fl.clear = corner_air_floor <= fl.z;
+    fl.level = std::max(corners.high, central.high) - std::min(corners.low, central.low) <= kLevel;
+    return fl;
+}
+
+// Is every point of the squares in the air, with no wall between it and the centre?
+bool in_open_air(const ModelQuery& model, const Vec3& centre, const std::array<Vec3, 5>& a,
+                 const std::array<Vec3, 5>& b) {
+    for (const auto& set : {a, b})
+        for (const auto& q : set)
+            if (model.inside(q) || (q != centre && model.segment_hits(centre, q))) return false;
+    return true;
+}
+
+struct Attempt {
+    PillarFit fit = PillarFit::NoRoom;
+    Pillar pillar;
+    int rank = 1;  // 0: on a level floor, 1: on a slope (air under every corner)
+};
+
+Attempt pillar_at(const ModelQuery& model, const Vec3& sample, const Vec3& centre, double below, const Params& p) {
+    // Rays start half-way between the overhang and what is below it, in the slot's air.
+    const Vec3 mid{centre.x, centre.y, 0.5 * (sample.z + below)};
+    const auto top = square_points(mid, p.tip_diameter), foot = square_points(mid, p.d_min);
+    if (!in_open_air(model, mid, top, foot)) return {};
+    auto drop = ceiling_drop(model, top, sample.z);
+    if (!drop || *drop > allowed_drop(p)) return {};
+    const Floor fl = floor_under(model, mid, p.d_min, p.gap);
+    Pillar pl;
+    pl.on_model = fl.on_model;
+    pl.top = {centre.x, centre.y, sample.z - *drop - p.gap};
+    pl.bottom = {centre.x, centre.y, fl.on_model ? fl.z + p.gap : 0.0};
+    if (pl.top.z - pl.bottom.z < p.layer_height) return {PillarFit::TooLow, pl};
+    // A foot that would have to stand on its uphill corner (a slope too steep across it) does not fit.
+    if (!fl.clear || !prism_is_clear(model, pl.bottom, p.d_min, pl.top, p.tip_diameter)) return {};
+    return {PillarFit::Fits, pl, fl.level ? 0 : 1};
+}
+
+}  // namespace
+
+std::optional<Vec3> clear_tip_foot(const ModelQuery& model, const Vec3& foot, const Vec3& top, const Params& p) {
+    const double max_slant = 0.9 * std::tan(p.critical_angle * M_PI / 180) * (top.z - foot.z);
+    for (const auto& off : nearby_offsets()) {
+        const Vec3 c = foot + off;
+        if (horizontal_distance(c, top) > max_slant) continue;
+        if (square_is_clear(model, c, p.d_min) && prism_is_clear(model, c, p.d_min, top, p.tip_diameter)) return c;
+    }
+    return std::nullopt;
+}
+
+bool square_is_clear(const ModelQuery& model, const Vec3& c, double w) {
+    const auto sq = square_points(c, w);
+    for (size_t i = 1; i < sq.size(); ++i)
+        if (model.inside(sq[i]) || model.segment_hits(sq[i], sq[i % 4 + 1])) return false;
+    return true;
+}
+
+bool prism_is_clear(const ModelQuery& model, const Vec3& bottom, double wb, const Vec3& top, double wt) {
+    const auto lo = square_points(bottom, wb), hi = square_points(top, wt);
+    for (size_t i = 0; i < lo.size(); ++i)
+        if (model.segment_hits(lo[i], hi[i])) return false;
+    for (size_t i = 1; i < lo.size(); ++i) {
+        size_t j = i % 4 + 1;
+        if (model.segment_hits(lo[i], lo[j]) || model.segment_hits(hi[i], hi[j])) return false;
+    }
+    return true;
+}
+
+PillarPlacement fit_pillar(const ModelQuery& model, const Vec3& sample, const Params& p) {
+    auto hit = model.first_hit(sample - Vec3{0, 0, 1e-4}, {0, 0, -1});
+    const double below = hit ? hit->point.z : 0.0;
+    std::optional<Attempt> best;
+    bool too_low = false;
+    for (const auto& off : nearby_offsets()) {
+        Attempt a = pillar_at(model, sample, sample + off, below, p);
+        too_low = too_low || a.fit == PillarFit::TooLow;
+        if (a.fit != PillarFit::Fits || (best && best->rank <= a.rank)) continue;
+        best = a;
+        if (a.rank == 0) break;
+    }
+    if (best) return {PillarFit::Fits, best->pillar};
+    return {too_low ? PillarFit::TooLow : PillarFit::NoRoom, {}};
+}
+
+Vec3 contact_under_tip(const ModelQuery& model, const Vec3& contact, double from_z, const Params& p) {
+    const Floor fl = floor_under(model, {contact.x, contact.y, from_z}, p.tip_diameter, p.gap);
+    return {contact.x, contact.y, std::max(contact.z, fl.z)};
+}
+
+Vec3 place_tip_top(const ModelQuery& model, const Vec3& sample, const Params& p) {
+    // Rays start a tip's length below the gap, under the overhang.
+    const double start = sample.z - p.gap - p.tip_length;
+    std::optional<Vec3> least;
+    double least_drop = INFINITY;
+    for (const auto& off : nearby_offsets()) {
+        const Vec3 c{sample.x + off.x, sample.y + off.y, start};
+        auto drop = ceiling_drop(model, square_points(c, p.tip_diameter), sample.z);
+        if (!drop) continue;
+        Vec3 top{c.x, c.y, sample.z - p.gap - *drop};
+        // A corner of the top in the model (the overhang's edge turning down beside the sample)
+        // is no place for a tip.
+        if (!square_is_clear(model, top, p.tip_diameter)) continue;
+        if (*drop <= allowed_drop(p)) return top;
+        if (*drop < least_drop) least_drop = *drop, least = top;
+    }
+    Vec3 top = least ? *least : sample - Vec3{0, 0, p.gap};
+    return {top.x, top.y, std::max(top.z, sample.z - p.gap - allowed_drop(p))};
+}
+
+}  // namespace cs

@@ -1,0 +1,126 @@
+// struts/placement: where pillars, tip tops and contact tips go (issue #12). Each is placed by its
+// whole square: the properties asked are those of every corner (air above and below, nothing in
+// the model), on small box models built to break a placement that looks at the axis alone.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+
+#include "core/params.hpp"
+#include "query/model_query.hpp"
+#include "struts/placement.hpp"
+#include "support.hpp"
+
+using namespace cs;
+using cs::test::box;
+
+namespace {
+
+std::array<Vec3, 4> corners(const Vec3& c, double w) {
+    const double h = 0.5 * w;
+    return {c + Vec3{h, h, 0}, c + Vec3{h, -h, 0}, c + Vec3{-h, h, 0}, c + Vec3{-h, -h, 0}};
+}
+
+// Nearest model straight up (or down) from each corner of the square; INFINITY where none.
+double nearest_from_corners(const ModelQuery& q, const Vec3& c, double w, double dir) {
+    double d = INFINITY;
+    for (const auto& v : corners(c, w))
+        if (auto hit = q.first_hit(v, {0, 0, dir})) d = std::min(d, hit->distance);
+    return d;
+}
+
+// A slot 1.1 mm high under a ceiling at z 6.1 whose floor steps down from z 5 (x >= 5) to z 4
+// (x < 5): the gearbox housing of issue #12. The step runs through a pillar's square when the
+// sample lies 0.2 mm from it.
+Mesh stepped_slot() {
+    Mesh m = box({0, 0, 0}, {5, 10, 4});
+    append(m, box({5, 0, 0}, {10, 10, 5}));
+    append(m, box({0, 0, 6.1}, {10, 10, 8}));
+    return m;
+}
+
+TEST(FitPillar, FootStandsAboveTheHighestFloorUnderItsSquare) {
+    Params p;
+    Mesh m = stepped_slot();
+    ModelQuery q(m);
+    const Vec3 sample{4.8, 5, 6.1};
+    auto placed = fit_pillar(q, sample, p);
+    ASSERT_EQ(placed.fit, PillarFit::Fits);
+    const Pillar& pl = placed.pillar;
+    EXPECT_TRUE(pl.on_model);
+    EXPECT_LE(horizontal_distance(pl.top, sample), 0.5 + 1e-9) << "stays near its sample";
+    // No corner of the foot in the model, and a gap of air under every one of them.
+    for (const auto& v : corners(pl.bottom, p.d_min)) EXPECT_FALSE(q.inside(v));
+    EXPECT_GE(nearest_from_corners(q, pl.bottom, p.d_min, -1), p.gap - 1e-9);
+    EXPECT_GE(nearest_from_corners(q, pl.top, p.tip_diameter, 1), p.gap - 1e-9);
+    EXPECT_NEAR(pl.top.z, 6.1 - p.gap, 1e-9);
+    EXPECT_TRUE(prism_is_clear(q, pl.bottom, p.d_min, pl.top, p.tip_diameter));
+}
+
+TEST(FitPillar, SlotTooLowForAPillarIsBridged) {
+    // A ceiling 1 mm over a floor at z 0.45 with a 0.1 mm groove down to z 0 under the sample:
+    // the sample sees 1 mm of free space, but a pillar's square stands on the floor beside the
+    // groove, leaving less than a layer between the two gaps anywhere near.
+    Params p;
+    Mesh m = box({-5, -5, 0}, {-0.05, 5, 0.45});
+    append(m, box({0.05, -5, 0}, {5, 5, 0.45}));
+    append(m, box({-5, -5, 1.0}, {5, 5, 2}));
+    ModelQuery q(m);
+    EXPECT_EQ(fit_pillar(q, {0, 0, 1.0}, p).fit, PillarFit::TooLow);
+}
+
+TEST(FitPillar, WallBesideTheSampleMovesThePillarOff) {
+    // A ledge 1.5 mm above the bed meeting a wall: a sample 0.2 mm from the wall gets a pillar
+    // moved away from it, not one cutting into it.
+    Params p;
+    Mesh m = box({-5, -5, 1.5}, {5, 5, 3});
+    append(m, box({5, -5, 0}, {7, 5, 3}));
+    ModelQuery q(m);
+    auto placed = fit_pillar(q, {4.8, 0, 1.5}, p);
+    ASSERT_EQ(placed.fit, PillarFit::Fits);
+    EXPECT_FALSE(placed.pillar.on_model);
+    EXPECT_EQ(placed.pillar.bottom.z, 0);
+    EXPECT_LE(placed.pillar.bottom.x + 0.5 * p.d_min, 5.0);
+    EXPECT_TRUE(prism_is_clear(q, placed.pillar.bottom, p.d_min, placed.pillar.top, p.tip_diameter));
+}
+
+TEST(PlaceTipTop, EveryCornerKeepsTheGapUnderASteppedCeiling) {
+    // The ceiling steps down by 0.5 mm 0.1 mm beside the sample: a square straight under the
+    // sample would need to drop further than a contact allows; it moves to the flat side.
+    Params p;
+    Mesh m = box({-5, -5, 10}, {0.1, 5, 12});
+    append(m, box({0.1, -5, 9.5}, {5, 5, 12}));
+    ModelQuery q(m);
+    const Vec3 top = place_tip_top(q, {0, 0, 10}, p);
+    EXPECT_GE(nearest_from_corners(q, top, p.tip_diameter, 1), p.gap - 1e-9);
+    EXPECT_LE(horizontal_distance(top, {0, 0, 10}), 0.5 + 1e-9);
+    EXPECT_GE(top.z, 10 - contact_tolerance(p)) << "still a contact of its sample";
+}
+
+TEST(ContactUnderTip, FootClearsTheModelOnASlope) {
+    // A 30-degree slope rising along x and y together (the worst case for a square): the tip's
+    // foot keeps air under every corner.
+    Params p;
+    const double s = std::tan(30 * M_PI / 180) / std::sqrt(2.0);
+    Mesh m;
+    m.vertices = {{-5, -5, 5 - 10 * s}, {5, -5, 5}, {5, 5, 5 + 10 * s}, {-5, 5, 5}};
+    m.faces = {{0, 1, 2}, {0, 2, 3}};
+    ModelQuery q(m);
+    const Vec3 c = contact_under_tip(q, {0, 0, 5}, 7, p);
+    const Vec3 foot = c + Vec3{0, 0, p.gap};
+    for (const auto& v : corners(foot, p.tip_diameter)) {
+        auto hit = q.first_hit(v, {0, 0, -1});
+        ASSERT_TRUE(hit.has_value());
+        EXPECT_GT(hit->distance, 0.0) << "a corner of the foot lies in the slope";
+    }
+    EXPECT_GE(c.z, 5.0);
+}
+
+TEST(SquareIsClear, CornerInAWallIsCaught) {
+    Mesh m = box({0, -5, 0}, {5, 5, 5});
+    ModelQuery q(m);
+    EXPECT_TRUE(square_is_clear(q, {-0.6, 0, 2}, 1.0));
+    EXPECT_FALSE(square_is_clear(q, {-0.4, 0, 2}, 1.0));
+}
+
+}  // namespace
