@@ -395,7 +395,7 @@ CheckResult check_supports(const Mesh& model_in, const Mesh& supports, const Par
         s.bottom_on_model = s.zmin > kOnBed && rests_on_model(q, s, t.gap + (t.gap - t.gap_min));
         check_shape(s, p, o, r);
         check_air_gap(s, t, r);
-        if (r.model_closed) check_penetration(q, s, t, r);
+        check_penetration(q, s, t, r);
     }
     check_grounding(q, shells, t, r);
     check_coverage(model, q, shells, p, t, r);

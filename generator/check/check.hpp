@@ -21,7 +21,8 @@
 //               model deeper than `penetration_tolerance` (default half the air gap). Only a
 //               contact end (the last `contact_depth` of a solid whose top touches the model from
 //               below or whose bottom stands on it) may reach `contact_depth` into the model: a
-//               square end on a slope of up to 45 degrees does.
+//               square end on a slope of up to 45 degrees does. A model with holes is judged
+//               too: inside is then the winding test's best guess (the report says so).
 //  grounding    every solid rests on the bed, on the model (within the gap), or on another solid
 //               that is itself grounded; a solid whose bottom lies inside the model is reported
 //               as buried, not only as resting on nothing.
@@ -79,7 +80,7 @@ struct CheckResult {
     std::size_t steep_bodies = 0;
     double max_angle = 0;
     double worst_length_to_width = 0;
-    bool model_closed = true;  // penetration is only judged inside a closed model
+    bool model_closed = true;  // with holes, inside is the winding test's fair guess
     std::vector<Flag> flagged;  // first few failures of the solid checks, with places
 
     bool coverage_ok() const { return covered + exempt == overhang_points; }

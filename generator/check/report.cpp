@@ -40,7 +40,7 @@ std::string CheckResult::summary() const {
     s << "\n";
     s << mark(penetrating_bodies == 0) << " penetration  " << penetrating_bodies
       << " solids reach into the model (deepest " << mm(max_penetration) << " mm outside contact ends)"
-      << (model_closed ? "" : " [model not closed: not judged]") << "\n";
+      << (model_closed ? "" : " [the model has holes: inside is a best guess]") << "\n";
     s << mark(ungrounded_bodies + buried_bottoms == 0) << " grounding    " << ungrounded_bodies << " of " << bodies
       << " solids rest on nothing, " << buried_bottoms << " start inside the model\n";
     s << mark(open_bodies + inward_bodies == 0) << " closed       " << open_bodies << " open, " << inward_bodies
@@ -64,7 +64,7 @@ std::string CheckResult::json() const {
                      {"uncovered_area_mm2", uncovered_area}, {"uncovered", unc}};
     j["air_gap"] = {{"ok", gap_ok()}, {"fused", fused_contacts},
                     {"min_mm", min_air_gap < INFINITY ? nlohmann::ordered_json(min_air_gap) : nlohmann::ordered_json()}};
-    j["penetration"] = {{"bodies", penetrating_bodies}, {"max_mm", max_penetration}, {"judged", model_closed}};
+    j["penetration"] = {{"bodies", penetrating_bodies}, {"max_mm", max_penetration}, {"model_closed", model_closed}};
     j["grounding"] = {{"ungrounded", ungrounded_bodies}, {"buried_bottoms", buried_bottoms}};
     j["closed"] = {{"open", open_bodies}, {"inward", inward_bodies}};
     j["angles"] = {{"steep", steep_bodies}, {"max_deg", max_angle}};

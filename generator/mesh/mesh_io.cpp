@@ -294,74 +294,51 @@ size_t ply_type_size(const std::string& t) {
     return 0;
 }
 
-Mesh parse_ply(std::string_view bytes, const std::string& name) {
+struct PlyHeader {
+    std::string format;
+    std::vector<PlyElement> elements;
+    size_t body_start = 0;
+};
+
+PlyHeader parse_ply_header(std::string_view bytes, const std::string& name) {
     auto header_end = bytes.find("end_header");
     if (bytes.substr(0, 3) != "ply" || header_end == std::string_view::npos)
         fail(name, "not a PLY file (missing 'ply' magic or 'end_header')", kReexport);
-    auto body_start = bytes.find('\n', header_end);
-    if (body_start == std::string_view::npos) fail(name, "PLY header is not terminated", kReexport);
-    ++body_start;
-    std::string format;
-    std::vector<PlyElement> elements;
+    PlyHeader h;
+    h.body_start = bytes.find('\n', header_end);
+    if (h.body_start == std::string_view::npos) fail(name, "PLY header is not terminated", kReexport);
+    ++h.body_start;
     Lines lines{bytes.substr(0, header_end)};
     std::string_view line;
     while (lines.next(line)) {
         auto tok = split_ws(line);
         if (tok.empty()) continue;
-        if (tok[0] == "format" && tok.size() >= 2) format = tok[1];
+        if (tok[0] == "format" && tok.size() >= 2) h.format = tok[1];
         else if (tok[0] == "element" && tok.size() == 3) {
             PlyElement e;
             e.name = tok[1];
             if (!to_long(tok[2], e.count) || e.count < 0) fail(name, "bad PLY element count", kReexport);
-            elements.push_back(e);
-        } else if (tok[0] == "property" && !elements.empty()) {
+            h.elements.push_back(e);
+        } else if (tok[0] == "property" && !h.elements.empty()) {
             PlyProperty p;
             if (tok.size() == 5 && tok[1] == "list") p = {std::string(tok[4]), std::string(tok[3]), std::string(tok[2])};
             else if (tok.size() == 3) p = {std::string(tok[2]), std::string(tok[1]), ""};
             else fail(name, "bad PLY property line '" + std::string(line) + "'", kReexport);
             if (!ply_type_size(p.type) || (!p.count_type.empty() && !ply_type_size(p.count_type)))
                 fail(name, "unknown PLY property type in '" + std::string(line) + "'", kReexport);
-            elements.back().props.push_back(p);
+            h.elements.back().props.push_back(p);
         }
     }
-    bool ascii = format == "ascii";
-    bool big = format == "binary_big_endian";
-    if (!ascii && !big && format != "binary_little_endian") fail(name, "unknown PLY format '" + format + "'", kReexport);
+    if (h.format != "ascii" && h.format != "binary_big_endian" && h.format != "binary_little_endian")
+        fail(name, "unknown PLY format '" + h.format + "'", kReexport);
+    return h;
+}
 
-    Mesh m;
-    std::string_view body = bytes.substr(body_start);
-    size_t pos = 0;
-    std::vector<std::string_view> words;
-    size_t word = 0;
-    if (ascii) words = split_ws(body);
-
-    auto read_value = [&](const std::string& type) -> double {
-        if (ascii) {
-            double v;
-            if (word >= words.size()) fail(name, "PLY data ends early (truncated file)", kReexport);
-            if (!to_double(words[word++], v)) fail(name, "PLY data has a non-number", kReexport);
-            return v;
-        }
-        size_t sz = ply_type_size(type);
-        if (pos + sz > body.size()) fail(name, "PLY data ends early (truncated file)", kReexport);
-        unsigned char buf[8];
-        std::memcpy(buf, body.data() + pos, sz);
-        if (big) std::reverse(buf, buf + sz);
-        pos += sz;
-        if (type == "char" || type == "int8") return static_cast<std::int8_t>(buf[0]);
-        if (type == "uchar" || type == "uint8") return buf[0];
-        if (type == "short" || type == "int16") return read_le<std::int16_t>(buf);
-        if (type == "ushort" || type == "uint16") return read_le<std::uint16_t>(buf);
-        if (type == "int" || type == "int32") return read_le<std::int32_t>(buf);
-        if (type == "uint" || type == "uint32") return read_le<std::uint32_t>(buf);
-        if (type == "float" || type == "float32") return read_le<float>(buf);
-        return read_le<double>(buf);
-    };
-
-    // Every row of every element takes at least one byte (binary) or one word (ASCII) of the body,
-    // so the rows of all elements together cannot outnumber the body's bytes: a cheap guard that
-    // keeps a tiny file with huge counts from making us allocate gigabytes. A row with no
-    // properties would take no bytes at all, so such elements must be empty.
+// Every row of every element takes at least one byte (binary) or one word (ASCII) of the body,
+// so the rows of all elements together cannot outnumber the body's bytes: a cheap guard that
+// keeps a tiny file with huge counts from making us allocate gigabytes. A row with no
+// properties would take no bytes at all, so such elements must be empty.
+void check_ply_rows(const std::vector<PlyElement>& elements, size_t body_size, const std::string& name) {
     size_t rows = 0;
     for (const auto& e : elements) {
         if (e.count > 0 && e.props.empty())
@@ -375,37 +352,84 @@ Mesh parse_ply(std::string_view bytes, const std::string& name) {
             }
         }
         rows += static_cast<size_t>(e.count);
-        if (rows > body.size()) fail(name, "PLY element counts exceed what the file can hold (truncated or corrupt)", kReexport);
+        if (rows > body_size) fail(name, "PLY element counts exceed what the file can hold (truncated or corrupt)", kReexport);
+    }
+}
+
+// Values of a PLY body, one after another: words of an ASCII body, or binary in either byte order.
+class PlyValues {
+public:
+    PlyValues(std::string_view body, const std::string& format, const std::string& name)
+        : body_(body), ascii_(format == "ascii"), big_(format == "binary_big_endian"), name_(name) {
+        if (ascii_) words_ = split_ws(body);
+    }
+    double next(const std::string& type) {
+        if (ascii_) {
+            double v;
+            if (word_ >= words_.size()) fail(name_, "PLY data ends early (truncated file)", kReexport);
+            if (!to_double(words_[word_++], v)) fail(name_, "PLY data has a non-number", kReexport);
+            return v;
+        }
+        size_t sz = ply_type_size(type);
+        if (pos_ + sz > body_.size()) fail(name_, "PLY data ends early (truncated file)", kReexport);
+        unsigned char buf[8];
+        std::memcpy(buf, body_.data() + pos_, sz);
+        if (big_) std::reverse(buf, buf + sz);
+        pos_ += sz;
+        if (type == "char" || type == "int8") return static_cast<std::int8_t>(buf[0]);
+        if (type == "uchar" || type == "uint8") return buf[0];
+        if (type == "short" || type == "int16") return read_le<std::int16_t>(buf);
+        if (type == "ushort" || type == "uint16") return read_le<std::uint16_t>(buf);
+        if (type == "int" || type == "int32") return read_le<std::int32_t>(buf);
+        if (type == "uint" || type == "uint32") return read_le<std::uint32_t>(buf);
+        if (type == "float" || type == "float32") return read_le<float>(buf);
+        return read_le<double>(buf);
     }
 
-    for (const auto& e : elements) {
-        bool is_vertex = e.name == "vertex", is_face = e.name == "face";
-        for (long r = 0; r < e.count; ++r) {
-            Vec3 v;
-            for (const auto& p : e.props) {
-                if (p.count_type.empty()) {
-                    double x = read_value(p.type);
-                    if (is_vertex && p.name == "x") v.x = x;
-                    if (is_vertex && p.name == "y") v.y = x;
-                    if (is_vertex && p.name == "z") v.z = x;
-                    continue;
-                }
-                double n = read_value(p.count_type);
-                if (!(n >= 0 && n < 1e6)) fail(name, "PLY list has a bad length", kReexport);
-                std::vector<std::uint32_t> poly;
-                for (long k = 0; k < static_cast<long>(n); ++k) {
-                    double idx = read_value(p.type);
-                    if (is_face && (p.name == "vertex_indices" || p.name == "vertex_index")) {
-                        if (!(idx >= 0 && idx < static_cast<double>(m.vertices.size())))
-                            fail(name, "PLY face refers to a missing vertex", kReexport);
-                        poly.push_back(static_cast<std::uint32_t>(idx));
-                    }
-                }
-                if (is_face) add_polygon(m, poly);
-            }
-            if (is_vertex) m.vertices.push_back(v);
+private:
+    std::string_view body_;
+    bool ascii_, big_;
+    const std::string& name_;
+    std::vector<std::string_view> words_;
+    size_t word_ = 0, pos_ = 0;
+};
+
+// One row of an element: a vertex's coordinates, a face's polygon; other properties are read past.
+void read_ply_row(const PlyElement& e, PlyValues& values, Mesh& m, const std::string& name) {
+    const bool is_vertex = e.name == "vertex", is_face = e.name == "face";
+    Vec3 v;
+    for (const auto& p : e.props) {
+        if (p.count_type.empty()) {
+            double x = values.next(p.type);
+            if (is_vertex && p.name == "x") v.x = x;
+            if (is_vertex && p.name == "y") v.y = x;
+            if (is_vertex && p.name == "z") v.z = x;
+            continue;
         }
+        double n = values.next(p.count_type);
+        if (!(n >= 0 && n < 1e6)) fail(name, "PLY list has a bad length", kReexport);
+        std::vector<std::uint32_t> poly;
+        for (long k = 0; k < static_cast<long>(n); ++k) {
+            double idx = values.next(p.type);
+            if (is_face && (p.name == "vertex_indices" || p.name == "vertex_index")) {
+                if (!(idx >= 0 && idx < static_cast<double>(m.vertices.size())))
+                    fail(name, "PLY face refers to a missing vertex", kReexport);
+                poly.push_back(static_cast<std::uint32_t>(idx));
+            }
+        }
+        if (is_face) add_polygon(m, poly);
     }
+    if (is_vertex) m.vertices.push_back(v);
+}
+
+Mesh parse_ply(std::string_view bytes, const std::string& name) {
+    const PlyHeader h = parse_ply_header(bytes, name);
+    std::string_view body = bytes.substr(h.body_start);
+    check_ply_rows(h.elements, body.size(), name);
+    PlyValues values(body, h.format, name);
+    Mesh m;
+    for (const auto& e : h.elements)
+        for (long r = 0; r < e.count; ++r) read_ply_row(e, values, m, name);
     return m;
 }
 

@@ -78,16 +78,15 @@ std::vector<int> face_components(const Mesh& m, int& count) {
     return comp;
 }
 
-Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
-    r = {};
-    r.input_triangles = raw.faces.size();
-    Box3 box = bounding_box(raw);
-    double extent = std::max({box.size().x, box.size().y, box.size().z});
+namespace {
 
-    // 1. Weld identical vertices.
+constexpr std::uint32_t kNone = UINT32_MAX;
+
+// 1. Weld identical vertices: `remap` takes each input vertex to its welded one.
+Mesh weld_vertices(const Mesh& raw, std::vector<std::uint32_t>& remap, RepairReport& r) {
     Mesh m;
     std::unordered_map<Vec3, std::uint32_t, VecHash> index;
-    std::vector<std::uint32_t> remap(raw.vertices.size());
+    remap.assign(raw.vertices.size(), 0);
     for (size_t i = 0; i < raw.vertices.size(); ++i) {
         Vec3 v = raw.vertices[i];
         auto [it, fresh] = index.emplace(v, static_cast<std::uint32_t>(m.vertices.size()));
@@ -95,17 +94,18 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
         remap[i] = it->second;
     }
     // Count only vertices that were genuinely shared by separate triangle corners in indexed input.
-    size_t used_raw = 0;
-    {
-        std::vector<char> used(raw.vertices.size(), 0);
-        for (const auto& f : raw.faces) used[f[0]] = used[f[1]] = used[f[2]] = 1;
-        used_raw = static_cast<size_t>(std::count(used.begin(), used.end(), 1));
-    }
+    std::vector<char> used(raw.vertices.size(), 0);
+    for (const auto& f : raw.faces) used[f[0]] = used[f[1]] = used[f[2]] = 1;
+    const auto used_raw = static_cast<size_t>(std::count(used.begin(), used.end(), 1));
     r.welded_vertices = used_raw > m.vertices.size() ? used_raw - m.vertices.size() : 0;
+    return m;
+}
 
-    // 2. Drop degenerate and duplicate triangles (the first of identical corner sets stays).
-    //    Duplicates are found by sorting, not hashing: on multi-million-triangle scans a hash map
-    //    of buckets costs several times the memory and time.
+// 2. Drop degenerate and duplicate triangles (the first of identical corner sets stays).
+//    Duplicates are found by sorting, not hashing: on multi-million-triangle scans a hash map
+//    of buckets costs several times the memory and time.
+void keep_proper_triangles(const Mesh& raw, const std::vector<std::uint32_t>& remap, double extent, Mesh& m,
+                           RepairReport& r) {
     const double min_area2 = std::pow(extent * 1e-9, 4);
     std::vector<Triangle> kept;
     kept.reserve(raw.faces.size());
@@ -122,124 +122,143 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
         }
         kept.push_back(f);
     }
-    {
-        auto corners = [&](std::uint32_t i) {
-            Triangle t = kept[i];
-            std::sort(t.begin(), t.end());
-            return t;
-        };
-        std::vector<std::uint32_t> by_corners(kept.size());
-        std::iota(by_corners.begin(), by_corners.end(), 0u);
-        std::sort(by_corners.begin(), by_corners.end(), [&](std::uint32_t a, std::uint32_t b) {
-            auto ta = corners(a), tb = corners(b);
-            return ta != tb ? ta < tb : a < b;
-        });
-        std::vector<char> duplicate(kept.size(), 0);
-        for (size_t i = 1; i < by_corners.size(); ++i)
-            if (corners(by_corners[i]) == corners(by_corners[i - 1])) duplicate[by_corners[i]] = 1;
-        m.faces.reserve(kept.size());
-        for (size_t i = 0; i < kept.size(); ++i) {
-            if (duplicate[i]) ++r.duplicates_removed;
-            else m.faces.push_back(kept[i]);
-        }
+    auto corners = [&](std::uint32_t i) {
+        Triangle t = kept[i];
+        std::sort(t.begin(), t.end());
+        return t;
+    };
+    std::vector<std::uint32_t> by_corners(kept.size());
+    std::iota(by_corners.begin(), by_corners.end(), 0u);
+    std::sort(by_corners.begin(), by_corners.end(), [&](std::uint32_t a, std::uint32_t b) {
+        auto ta = corners(a), tb = corners(b);
+        return ta != tb ? ta < tb : a < b;
+    });
+    std::vector<char> duplicate(kept.size(), 0);
+    for (size_t i = 1; i < by_corners.size(); ++i)
+        if (corners(by_corners[i]) == corners(by_corners[i - 1])) duplicate[by_corners[i]] = 1;
+    m.faces.reserve(kept.size());
+    for (size_t i = 0; i < kept.size(); ++i) {
+        if (duplicate[i]) ++r.duplicates_removed;
+        else m.faces.push_back(kept[i]);
     }
-    if (m.faces.empty())
-        throw InputError(name + ": every triangle is degenerate (zero area); nothing to print. Re-export the model.");
+}
 
-    // 3. Edge use: holes and non-manifold edges. The face-edges sorted by edge give each edge's
-    //    faces as one run; a manifold edge (exactly two faces) links the faces across it.
+// 3. Edge use: holes and non-manifold edges. The face-edges sorted by edge give each edge's
+//    faces as one run; a manifold edge (exactly two faces) links the faces across it. Returns,
+//    per face-edge (3 * face + k), the face across it, or kNone.
+std::vector<std::uint32_t> faces_across(const Mesh& m, RepairReport& r) {
     const size_t nf = m.faces.size();
-    constexpr std::uint32_t kNone = UINT32_MAX;
-    std::vector<std::uint32_t> across(3 * nf, kNone);  // face across each face-edge, if manifold
-    {
-        std::vector<std::pair<std::uint64_t, std::uint32_t>> uses(3 * nf);  // (edge, face-edge)
-        for (std::uint32_t fi = 0; fi < nf; ++fi)
-            for (int k = 0; k < 3; ++k)
-                uses[3 * fi + k] = {edge_key(m.faces[fi][k], m.faces[fi][(k + 1) % 3]), 3 * fi + k};
-        std::sort(uses.begin(), uses.end());
-        for (size_t i = 0, j; i < uses.size(); i = j) {
-            for (j = i + 1; j < uses.size() && uses[j].first == uses[i].first;) ++j;
-            if (j - i == 1) ++r.boundary_edges;
-            if (j - i > 2) ++r.nonmanifold_edges;
-            if (j - i == 2) {
-                across[uses[i].second] = uses[i + 1].second / 3;
-                across[uses[i + 1].second] = uses[i].second / 3;
-            }
+    std::vector<std::uint32_t> across(3 * nf, kNone);
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> uses(3 * nf);  // (edge, face-edge)
+    for (std::uint32_t fi = 0; fi < nf; ++fi)
+        for (int k = 0; k < 3; ++k) uses[3 * fi + k] = {edge_key(m.faces[fi][k], m.faces[fi][(k + 1) % 3]), 3 * fi + k};
+    std::sort(uses.begin(), uses.end());
+    for (size_t i = 0, j; i < uses.size(); i = j) {
+        for (j = i + 1; j < uses.size() && uses[j].first == uses[i].first;) ++j;
+        if (j - i == 1) ++r.boundary_edges;
+        if (j - i > 2) ++r.nonmanifold_edges;
+        if (j - i == 2) {
+            across[uses[i].second] = uses[i + 1].second / 3;
+            across[uses[i + 1].second] = uses[i].second / 3;
         }
     }
+    return across;
+}
 
-    // 4. Orient each edge-connected patch consistently (breadth first across manifold edges).
-    std::vector<int> patch(nf, -1);
-    std::vector<char> flip(nf, 0);
-    int patches = 0;
+// Edge-connected patches of consistently oriented faces.
+struct Patches {
+    int count = 0;
+    std::vector<int> of_face;  // patch of each face
+    std::vector<char> flip;    // faces turned so far (for the report)
+};
+
+// 4. Orient each edge-connected patch consistently (breadth first across manifold edges).
+Patches orient_patches(Mesh& m, const std::vector<std::uint32_t>& across) {
+    const size_t nf = m.faces.size();
+    Patches p{0, std::vector<int>(nf, -1), std::vector<char>(nf, 0)};
     auto directed = [&](std::uint32_t fi, std::uint32_t a, std::uint32_t b) {
         // +1 if face fi (with its current flip) traverses a->b, -1 if b->a.
         const auto& f = m.faces[fi];
         for (int k = 0; k < 3; ++k)
-            if (f[k] == a && f[(k + 1) % 3] == b) return flip[fi] ? -1 : 1;
-        return flip[fi] ? 1 : -1;
+            if (f[k] == a && f[(k + 1) % 3] == b) return p.flip[fi] ? -1 : 1;
+        return p.flip[fi] ? 1 : -1;
     };
     std::vector<std::uint32_t> queue;
     for (std::uint32_t seed = 0; seed < nf; ++seed) {
-        if (patch[seed] >= 0) continue;
+        if (p.of_face[seed] >= 0) continue;
         queue.assign(1, seed);
-        patch[seed] = patches;
+        p.of_face[seed] = p.count;
         for (size_t qi = 0; qi < queue.size(); ++qi) {
             std::uint32_t fi = queue[qi];
             for (int k = 0; k < 3; ++k) {
                 std::uint32_t g = across[3 * fi + k];
-                if (g == kNone || patch[g] >= 0) continue;
+                if (g == kNone || p.of_face[g] >= 0) continue;
                 std::uint32_t a = m.faces[fi][k], b = m.faces[fi][(k + 1) % 3];
-                patch[g] = patches;
-                if (directed(fi, a, b) == directed(g, a, b)) flip[g] = !flip[g];
+                p.of_face[g] = p.count;
+                if (directed(fi, a, b) == directed(g, a, b)) p.flip[g] = !p.flip[g];
                 queue.push_back(g);
             }
         }
-        ++patches;
+        ++p.count;
     }
-    std::vector<std::uint32_t>().swap(across);
-    for (size_t i = 0; i < m.faces.size(); ++i)
-        if (flip[i]) std::swap(m.faces[i][1], m.faces[i][2]);
+    for (size_t i = 0; i < nf; ++i)
+        if (p.flip[i]) std::swap(m.faces[i][1], m.faces[i][2]);
+    return p;
+}
 
-    // 5. Turn each patch outward. Volumes are taken about the bounding box centre so an open
-    //    patch's volume does not depend on where the origin is.
-    const Vec3 centre = box.center();
-    std::vector<std::vector<size_t>> patch_faces(patches);
-    for (size_t i = 0; i < m.faces.size(); ++i) patch_faces[patch[i]].push_back(i);
-    std::vector<double> volume(patches, 0);
-    for (int p = 0; p < patches; ++p)
-        for (size_t fi : patch_faces[p]) {
-            const auto& f = m.faces[fi];
-            volume[p] += dot(m.vertices[f[0]] - centre, cross(m.vertices[f[1]] - centre, m.vertices[f[2]] - centre)) / 6.0;
+// Nesting: q contains p when every probe of p (corners spread over its faces) lies inside q.
+// A patch only partly inside another (intersecting shells) is not nested in it. Fills each
+// patch's innermost container (-1: none) and how many contain it.
+void nesting(const Mesh& m, const std::vector<std::vector<size_t>>& patch_faces, const std::vector<double>& volume,
+             std::vector<int>& parent, std::vector<int>& depth) {
+    const int patches = static_cast<int>(patch_faces.size());
+    parent.assign(patches, -1), depth.assign(patches, 0);
+    if (patches <= 1 || patches > 64) return;
+    std::vector<std::vector<char>> contains(patches, std::vector<char>(patches, 0));
+    for (int p = 0; p < patches; ++p) {
+        std::vector<Vec3> probes;
+        size_t n = patch_faces[p].size(), step = std::max<size_t>(1, n / 8);
+        for (size_t k = 0; k < n && probes.size() < 8; k += step) probes.push_back(m.vertices[m.faces[patch_faces[p][k]][0]]);
+        for (int q = 0; q < patches; ++q) {
+            if (q == p || std::abs(volume[q]) == 0) continue;
+            contains[q][p] = std::all_of(probes.begin(), probes.end(),
+                                         [&](const Vec3& x) { return inside_by_parity(m, patch_faces[q], x); });
+            depth[p] += contains[q][p];
         }
-    // Nesting: q contains p when every probe of p (corners spread over its faces) lies inside q.
-    // A patch only partly inside another (intersecting shells) is not nested in it.
-    std::vector<int> parent(patches, -1), depth(patches, 0);
-    if (patches > 1 && patches <= 64) {
-        std::vector<std::vector<char>> contains(patches, std::vector<char>(patches, 0));
-        for (int p = 0; p < patches; ++p) {
-            std::vector<Vec3> probes;
-            size_t n = patch_faces[p].size(), step = std::max<size_t>(1, n / 8);
-            for (size_t k = 0; k < n && probes.size() < 8; k += step) probes.push_back(m.vertices[m.faces[patch_faces[p][k]][0]]);
-            for (int q = 0; q < patches; ++q) {
-                if (q == p || std::abs(volume[q]) == 0) continue;
-                contains[q][p] = std::all_of(probes.begin(), probes.end(),
-                                             [&](const Vec3& x) { return inside_by_parity(m, patch_faces[q], x); });
-                depth[p] += contains[q][p];
-            }
-        }
-        for (int p = 0; p < patches; ++p)
-            for (int q = 0; q < patches; ++q)
-                if (contains[q][p] && (parent[p] < 0 || depth[q] > depth[parent[p]])) parent[p] = q;
     }
-    std::vector<int> order(patches);
+    for (int p = 0; p < patches; ++p)
+        for (int q = 0; q < patches; ++q)
+            if (contains[q][p] && (parent[p] < 0 || depth[q] > depth[parent[p]])) parent[p] = q;
+}
+
+// Volume of a set of faces about `centre`.
+double volume_about(const Mesh& m, const std::vector<size_t>& faces, const Vec3& centre) {
+    double v = 0;
+    for (size_t fi : faces) {
+        const auto& f = m.faces[fi];
+        v += dot(m.vertices[f[0]] - centre, cross(m.vertices[f[1]] - centre, m.vertices[f[2]] - centre)) / 6.0;
+    }
+    return v;
+}
+
+// 5. Turn each patch outward. Volumes are taken about the bounding box centre so an open
+//    patch's volume does not depend on where the origin is. Solids nested in a solid are
+//    dropped (marked in `dropped`), cavities kept.
+std::vector<char> turn_patches_outward(Mesh& m, Patches& pt, const Vec3& centre, RepairReport& r) {
+    std::vector<std::vector<size_t>> patch_faces(pt.count);
+    for (size_t i = 0; i < m.faces.size(); ++i) patch_faces[pt.of_face[i]].push_back(i);
+    std::vector<double> volume(pt.count, 0);
+    for (int p = 0; p < pt.count; ++p) volume[p] = volume_about(m, patch_faces[p], centre);
+    std::vector<int> parent, depth;
+    nesting(m, patch_faces, volume, parent, depth);
+    std::vector<int> order(pt.count);
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return depth[a] < depth[b]; });
-    std::vector<char> dropped(m.faces.size(), 0), patch_flipped(patches, 0), patch_dropped(patches, 0);
+    std::vector<char> dropped(m.faces.size(), 0), patch_flipped(pt.count, 0), patch_dropped(pt.count, 0);
     auto turn = [&](int p) {
         for (size_t fi : patch_faces[p]) {
             std::swap(m.faces[fi][1], m.faces[fi][2]);
-            flip[fi] = !flip[fi];
+            pt.flip[fi] = !pt.flip[fi];
         }
         volume[p] = -volume[p];
         patch_flipped[p] = 1;
@@ -265,8 +284,57 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
             }
         }
     }
+    return dropped;
+}
+
+// The mesh without unused vertices, so outputs carry no strays.
+Mesh without_unused_vertices(const Mesh& m) {
+    std::vector<std::uint32_t> keep(m.vertices.size(), kNone);
+    Mesh out;
+    for (const auto& f : m.faces) {
+        Triangle g;
+        for (int k = 0; k < 3; ++k) {
+            if (keep[f[k]] == kNone) {
+                keep[f[k]] = static_cast<std::uint32_t>(out.vertices.size());
+                out.vertices.push_back(m.vertices[f[k]]);
+            }
+            g[k] = keep[f[k]];
+        }
+        out.faces.push_back(g);
+    }
+    return out;
+}
+
+void add_warnings(const std::string& name, RepairReport& r) {
+    auto warn = [&](size_t n, const std::string& what) {
+        if (n) r.warnings.push_back(name + ": " + std::to_string(n) + " " + what);
+    };
+    warn(r.degenerate_removed, "degenerate triangles removed");
+    warn(r.duplicates_removed, "duplicate triangles removed");
+    warn(r.flipped, "triangles flipped to face outward");
+    warn(r.inner_shells_removed, "shells lying wholly inside another solid removed (they are not surfaces of the print)");
+    warn(r.boundary_edges, "open (boundary) edges: the mesh has holes; overhangs near them are still supported");
+    warn(r.nonmanifold_edges, "non-manifold edges (shared by more than two triangles); carried on");
+}
+
+}  // namespace
+
+Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
+    r = {};
+    r.input_triangles = raw.faces.size();
+    const Box3 box = bounding_box(raw);
+    const double extent = std::max({box.size().x, box.size().y, box.size().z});
+
+    std::vector<std::uint32_t> remap;
+    Mesh m = weld_vertices(raw, remap, r);
+    keep_proper_triangles(raw, remap, extent, m, r);
+    if (m.faces.empty())
+        throw InputError(name + ": every triangle is degenerate (zero area); nothing to print. Re-export the model.");
+    Patches patches = orient_patches(m, faces_across(m, r));
+    const Vec3 centre = box.center();
+    std::vector<char> dropped = turn_patches_outward(m, patches, centre, r);
     r.flipped = 0;
-    for (size_t i = 0; i < m.faces.size(); ++i) r.flipped += flip[i] && !dropped[i];
+    for (size_t i = 0; i < m.faces.size(); ++i) r.flipped += patches.flip[i] && !dropped[i];
     if (r.inner_shells_removed) {
         std::vector<Triangle> kept;
         for (size_t i = 0; i < m.faces.size(); ++i)
@@ -277,39 +345,13 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
     int shells = 0;
     face_components(m, shells);
     r.shells = static_cast<size_t>(shells);
-
-    double vol = 0;
-    for (const auto& f : m.faces)
-        vol += dot(m.vertices[f[0]] - centre, cross(m.vertices[f[1]] - centre, m.vertices[f[2]] - centre)) / 6.0;
-    if (!(std::abs(vol) > std::pow(extent, 3) * 1e-9))
+    std::vector<size_t> all(m.faces.size());
+    std::iota(all.begin(), all.end(), size_t{0});
+    if (!(std::abs(volume_about(m, all, centre)) > std::pow(extent, 3) * 1e-9))
         throw InputError(name + ": the mesh encloses no volume (it is flat or a single sheet); there is no solid to "
                                 "support. Export the solid body, not a surface.");
-
-    // Drop vertices no face uses, so outputs carry no strays.
-    std::vector<std::uint32_t> keep(m.vertices.size(), UINT32_MAX);
-    Mesh out;
-    for (auto& f : m.faces) {
-        Triangle g;
-        for (int k = 0; k < 3; ++k) {
-            if (keep[f[k]] == UINT32_MAX) {
-                keep[f[k]] = static_cast<std::uint32_t>(out.vertices.size());
-                out.vertices.push_back(m.vertices[f[k]]);
-            }
-            g[k] = keep[f[k]];
-        }
-        out.faces.push_back(g);
-    }
-
-    auto warn = [&](size_t n, const std::string& what) {
-        if (n) r.warnings.push_back(name + ": " + std::to_string(n) + " " + what);
-    };
-    warn(r.degenerate_removed, "degenerate triangles removed");
-    warn(r.duplicates_removed, "duplicate triangles removed");
-    warn(r.flipped, "triangles flipped to face outward");
-    warn(r.inner_shells_removed, "shells lying wholly inside another solid removed (they are not surfaces of the print)");
-    warn(r.boundary_edges, "open (boundary) edges: the mesh has holes; overhangs near them are still supported");
-    warn(r.nonmanifold_edges, "non-manifold edges (shared by more than two triangles); carried on");
-    return out;
+    add_warnings(name, r);
+    return without_unused_vertices(m);
 }
 
 void rotation_from_euler_deg(double rx, double ry, double rz, double out[3][3]) {
