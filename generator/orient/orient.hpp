@@ -1,4 +1,4 @@
-// Orientation: put the model where it needs the least support (paper Sec. 3, algorithm.md sec. 1).
+// Orientation: put the model where it needs the least support (paper Sec. 3, docs/algorithm.md section 1).
 //
 // Candidate "down" directions are the outward normals of the convex hull's faces (the rest
 // positions of Alexander et al. 1998), near-parallel ones merged, plus the six axis directions and

@@ -42,10 +42,13 @@ json params_json(const Params& p) {
             {"model_clearance_mm", p.model_clearance}};
 }
 
-json supports_json(const Supports& s) {
+json supports_json(const Supports& s, const Params& p) {
     const auto& st = s.sized.tree.stats;
     size_t tips = 0;
     for (const auto& b : s.bodies) tips += b.kind == BodyKind::Tip;
+    std::vector<double> widths;
+    for (const auto& z : s.sized.struts) widths.push_back(0.5 * (z.top_width + z.bottom_width));
+    const auto cost = estimate_slicer_cost(s.sized.tree, widths, p);
     return {{"struts", s.sized.tree.struts.size()},
             {"nodes", s.sized.tree.nodes.size()},
             {"tips", tips},
@@ -65,7 +68,12 @@ json supports_json(const Supports& s) {
             {"total_strut_length_mm", s.length},
             {"support_volume_mm3", s.volume},
             {"worst_length_to_width", s.sized.worst_length_to_width},
-            {"strength_violations", s.sized.strength_violations}};
+            {"strength_violations", s.sized.strength_violations},
+            {"slicer_estimate", {{"island_layers", cost.island_layers},
+                                 {"most_islands", cost.most_islands},
+                                 {"outline_mm", cost.outline_mm},
+                                 {"travel_mm", cost.travel_mm},
+                                 {"seconds", cost.seconds}}}};
 }
 
 json edits_json(const ManualEdits& e, std::size_t blocked_samples) {
@@ -155,8 +163,8 @@ std::string report_json(const Result& r, const Job& job) {
                       {"edge_samples", counts[1]},
                       {"point_samples", counts[2]},
                       {"centroid_samples", counts[3]}};
-    j["supports"] = supports_json(r.supports);
-    j["columns_baseline"] = supports_json(r.columns);
+    j["supports"] = supports_json(r.supports, job.params);
+    j["columns_baseline"] = supports_json(r.columns, job.params);
     double saved_v = r.columns.volume > 0 ? 1 - r.supports.volume / r.columns.volume : 0;
     double saved_l = r.columns.length > 0 ? 1 - r.supports.length / r.columns.length : 0;
     j["saving_vs_columns"] = {{"volume", saved_v}, {"length", saved_l}};

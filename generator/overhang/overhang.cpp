@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <unordered_map>
+
+#include "query/model_query.hpp"
 
 namespace cs {
 namespace {
@@ -25,28 +28,32 @@ bool owns_edge_points(const Vec3& u, const Vec3& v) {
     return dy < 0 || (dy == 0 && dx > 0);
 }
 
-// Hash grid of accepted samples, to drop extras that land near an existing sample.
-struct SampleGrid {
-    double cell;
-    std::unordered_map<std::uint64_t, std::vector<Vec3>> cells;
+// XY hash grid of points that cover overhang points around them (samples, anchors), for the
+// coverage rule of `covers`.
+class CoverGrid {
+public:
+    CoverGrid(double reach, double critical_angle) : reach_(reach), angle_(critical_angle) {}
 
-    std::uint64_t key(long i, long j, long k) const {
-        return (std::uint64_t(i & 0x1fffff) << 42) | (std::uint64_t(j & 0x1fffff) << 21) | std::uint64_t(k & 0x1fffff);
-    }
-    long idx(double v) const { return static_cast<long>(std::floor(v / cell)); }
-    void add(const Vec3& p) { cells[key(idx(p.x), idx(p.y), idx(p.z))].push_back(p); }
-    bool near(const Vec3& p, double r) const {
-        long i = idx(p.x), j = idx(p.y), k = idx(p.z);
+    void add(const Vec3& p) { cells_[key(idx(p.x), idx(p.y))].push_back(p); }
+    // `above`: how much higher than x a coverer may lie at most (beyond the surface rule).
+    bool covered(const Vec3& x, double above = INFINITY) const {
+        long i = idx(x.x), j = idx(x.y);
         for (long a = i - 1; a <= i + 1; ++a)
-            for (long b = j - 1; b <= j + 1; ++b)
-                for (long c = k - 1; c <= k + 1; ++c) {
-                    auto it = cells.find(key(a, b, c));
-                    if (it == cells.end()) continue;
-                    for (const auto& q : it->second)
-                        if (dot(q - p, q - p) < r * r) return true;
-                }
+            for (long b = j - 1; b <= j + 1; ++b) {
+                auto it = cells_.find(key(a, b));
+                if (it == cells_.end()) continue;
+                for (const auto& q : it->second)
+                    if (q.z <= x.z + above && covers(q, x, reach_, angle_)) return true;
+            }
         return false;
     }
+
+private:
+    static std::uint64_t key(long i, long j) { return (std::uint64_t(i) << 32) ^ std::uint64_t(j & 0xffffffff); }
+    long idx(double v) const { return static_cast<long>(std::floor(v / reach_)); }
+
+    double reach_, angle_;
+    std::unordered_map<std::uint64_t, std::vector<Vec3>> cells_;
 };
 
 std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
@@ -58,7 +65,164 @@ void sample_segment(const Vec3& a, const Vec3& b, double spacing, std::vector<Ve
     for (int i = 0; i <= n; ++i) out.push_back(a + (b - a) * (double(i) / n));
 }
 
+// Overhang points coverage is judged on: the lattice refined this many times (`check` judges at
+// half the spacing). Every point of a face lies within half a diagonal of this finer lattice of
+// one of them (or near a corner or the centroid of a small face).
+constexpr int kDemandRefinement = 16;
+// Step along rims and ridges while looking for uncovered stretches, as a fraction of the reach:
+// fine enough that the sample placed past an uncovered point lands within a step of the best spot.
+constexpr double kEdgeStepOfReach = 0.25;
+// A rim sample goes this fraction of the reach past the first uncovered point, a hair short of the
+// full reach so rounding never leaves that point just outside.
+constexpr double kEdgeAdvance = 0.98;
+// Extras and anchors cover our points within the reach less half a diagonal of
+// the refined lattice, so that every point between ours is still within the full reach. The
+// lattice needs no margin: inside its cells every point is within reach of a corner.
+constexpr double kReachMarginOfSpacing = std::numbers::sqrt2 / 2 / kDemandRefinement;
+
+struct EdgeSegment {
+    Vec3 a, b;
+};
+
+// Lattice samples of the overhang faces; marks the faces that caught one.
+std::vector<Vec3> lattice_samples(const Mesh& m, const std::vector<char>& cls, double s, OverhangSamples& res) {
+    std::vector<Vec3> lattice;
+    for (size_t i = 0; i < m.faces.size(); ++i) {
+        if (!cls[i]) continue;
+        const auto& f = m.faces[i];
+        ++res.overhang_faces;
+        res.overhang_area += 0.5 * norm(face_normal_unnormalized(m, f));
+        rasterize_triangle(m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], s, lattice);
+    }
+    return lattice;
+}
+
+// A keel: two downward-facing faces that both rise away from their shared edge (the edge is the
+// lowest line of its cross-section), the edge itself flatter than the critical angle. Such a line
+// hangs whatever the faces' own slopes: nothing below it grows up to it.
+bool hanging_keel(const Mesh& m, std::uint32_t f0, std::uint32_t f1, std::uint32_t a, std::uint32_t b,
+                         const Vec3& n0, const Vec3& n1, double sin_c) {
+    if (!(n0.z < 0 && n1.z < 0)) return false;
+    const Vec3 e = m.vertices[b] - m.vertices[a];
+    const double cos_c = std::sqrt(std::max(0.0, 1 - sin_c * sin_c));
+    if (norm(e) == 0 || std::abs(e.z) / norm(e) >= cos_c) return false;
+    auto rises = [&](std::uint32_t fi) {
+        const auto& f = m.faces[fi];
+        std::uint32_t far = f[0] != a && f[0] != b ? f[0] : (f[1] != a && f[1] != b ? f[1] : f[2]);
+        const Vec3 w = m.vertices[far] - m.vertices[a];
+        return (w - e * (dot(w, e) / dot(e, e))).z > 0;
+    };
+    return rises(f0) && rises(f1);
+}
+
+// Edges that need samples of their own: region borders that are lips (one side needs support and
+// the other side turns up), and downward convex ridges. Inside-corner borders (a wall going down
+// from the overhang) become anchors: the wall carries the overhang there.
+std::vector<EdgeSegment> support_edges(const Mesh& m, const std::vector<char>& cls, const OverhangOptions& o,
+                                       OverhangSamples& res) {
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> edge_faces;
+    edge_faces.reserve(m.faces.size() * 2);
+    for (std::uint32_t fi = 0; fi < m.faces.size(); ++fi)
+        for (int k = 0; k < 3; ++k) edge_faces[edge_key(m.faces[fi][k], m.faces[fi][(k + 1) % 3])].push_back(fi);
+    std::vector<std::uint64_t> keys;
+    keys.reserve(edge_faces.size());
+    for (const auto& kv : edge_faces) keys.push_back(kv.first);
+    std::sort(keys.begin(), keys.end());  // deterministic order
+    const double sin_c = std::sin(o.critical_angle * M_PI / 180.0);
+    std::vector<EdgeSegment> out;
+    for (auto key : keys) {
+        const auto& fs = edge_faces[key];
+        auto a = static_cast<std::uint32_t>(key >> 32), b = static_cast<std::uint32_t>(key & 0xffffffffu);
+        const Vec3 &pa = m.vertices[a], &pb = m.vertices[b];
+        if (std::max(pa.z, pb.z) <= o.bed_height * 0.5) continue;
+        int over = 0;
+        for (auto f : fs) over += cls[f];
+        // Convex edge: the far corner of the second face lies behind the first face's plane.
+        auto convex = [&] {
+            const auto& g = m.faces[fs[1]];
+            std::uint32_t far = g[0] != a && g[0] != b ? g[0] : (g[1] != a && g[1] != b ? g[1] : g[2]);
+            return dot(normalized(face_normal_unnormalized(m, m.faces[fs[0]])), m.vertices[far] - pa) < 0;
+        };
+        // A border where the overhang meets a wall going down from it (an inside corner) rests
+        // on that wall; only convex borders (lips) need their own samples.
+        bool any_border = over > 0 && over < static_cast<int>(fs.size());
+        bool border = any_border && (fs.size() != 2 || convex());
+        // (Points along it as close as the rims are judged: the whole corner carries, not just
+        // points a spacing apart.)
+        if (any_border && !border)
+            sample_segment(pa, pb, kEdgeStepOfReach * coverage_reach(o.sampling_distance), res.anchors);
+        bool open_border = fs.size() == 1 && over == 1;
+        bool ridge = false;
+        if (fs.size() == 2 && over == 0) {
+            Vec3 n1 = normalized(face_normal_unnormalized(m, m.faces[fs[0]]));
+            Vec3 n2 = normalized(face_normal_unnormalized(m, m.faces[fs[1]]));
+            ridge = (normalized(n1 + n2).z < -sin_c && convex()) || hanging_keel(m, fs[0], fs[1], a, b, n1, n2, sin_c);
+        }
+        if (!(border || open_border || ridge)) continue;
+        res.ridge_edges += ridge;
+        out.push_back({pa, pb});
+    }
+    return out;
+}
+
+// Vertices lower than all their neighbours (above the first layer).
+std::vector<Vec3> local_minima(const Mesh& m, const OverhangOptions& o) {
+    std::vector<double> min_neighbour_z(m.vertices.size(), INFINITY);
+    for (const auto& f : m.faces)
+        for (int k = 0; k < 3; ++k) {
+            auto v = f[k];
+            min_neighbour_z[v] = std::min({min_neighbour_z[v], m.vertices[f[(k + 1) % 3]].z, m.vertices[f[(k + 2) % 3]].z});
+        }
+    std::vector<Vec3> out;
+    for (size_t v = 0; v < m.vertices.size(); ++v)
+        if (m.vertices[v].z < min_neighbour_z[v] && m.vertices[v].z > o.bed_height * 0.5) out.push_back(m.vertices[v]);
+    return out;
+}
+
+// Points of the overhang faces that must be covered: the refined lattice, every face's centroid and
+// corners (small faces between the refined lattice's points). Sorted top down, then by x and y, so
+// the gap fills chosen from them do not depend on the order of the faces.
+std::vector<Vec3> face_demand(const Mesh& m, const std::vector<char>& cls, double spacing) {
+    std::vector<Vec3> out;
+    for (size_t i = 0; i < m.faces.size(); ++i) {
+        if (!cls[i]) continue;
+        const auto& f = m.faces[i];
+        rasterize_triangle(m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], spacing, out);
+        out.push_back((m.vertices[f[0]] + m.vertices[f[1]] + m.vertices[f[2]]) / 3.0);
+        for (auto v : f) out.push_back(m.vertices[v]);
+    }
+    std::sort(out.begin(), out.end(), [](const Vec3& a, const Vec3& b) {
+        if (a.z != b.z) return a.z > b.z;
+        if (a.x != b.x) return a.x < b.x;
+        return a.y < b.y;
+    });
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+}
+
+// Points along an edge, a fraction of the reach apart, both ends included.
+std::vector<Vec3> edge_points(const EdgeSegment& e, double reach) {
+    std::vector<Vec3> out;
+    sample_segment(e.a, e.b, kEdgeStepOfReach * reach, out);
+    return out;
+}
+
 }  // namespace
+
+double coverage_reach(double sampling_distance) { return std::sqrt(0.5) * sampling_distance; }
+
+bool covers(const Vec3& sample, const Vec3& x, double reach, double critical_angle_deg) {
+    const double rise = reach * std::tan((90 - critical_angle_deg) * M_PI / 180.0);
+    return horizontal_distance(sample, x) <= reach && std::abs(sample.z - x.z) <= rise;
+}
+
+bool rests_on_material(const ModelQuery& model, const Vec3& x, double touching_space) {
+    const Vec3 just_below{0, 0, 0.01};
+    if (model.inside(x - just_below)) return true;  // overlapping shells: not a surface of the print
+    auto hit = model.first_hit(x - just_below, {0, 0, -1});
+    return x.z - (hit ? hit->point.z : 0.0) <= touching_space;
+}
+
 
 bool needs_support(const Vec3& n, double critical_angle_deg) {
     return n.z < -std::sin(critical_angle_deg * M_PI / 180.0);
@@ -115,123 +279,57 @@ void rasterize_triangle(const Vec3& a0, const Vec3& b0, const Vec3& c0, double s
     }
 }
 
-// A keel: two downward-facing faces that both rise away from their shared edge (the edge is the
-// lowest line of its cross-section), the edge itself flatter than the critical angle. Such a line
-// hangs whatever the faces' own slopes: nothing below it grows up to it.
-static bool hanging_keel(const Mesh& m, std::uint32_t f0, std::uint32_t f1, std::uint32_t a, std::uint32_t b,
-                         const Vec3& n0, const Vec3& n1, double sin_c) {
-    if (!(n0.z < 0 && n1.z < 0)) return false;
-    const Vec3 e = m.vertices[b] - m.vertices[a];
-    const double cos_c = std::sqrt(std::max(0.0, 1 - sin_c * sin_c));
-    if (norm(e) == 0 || std::abs(e.z) / norm(e) >= cos_c) return false;
-    auto rises = [&](std::uint32_t fi) {
-        const auto& f = m.faces[fi];
-        std::uint32_t far = f[0] != a && f[0] != b ? f[0] : (f[1] != a && f[1] != b ? f[1] : f[2]);
-        const Vec3 w = m.vertices[far] - m.vertices[a];
-        return (w - e * (dot(w, e) / dot(e, e))).z > 0;
-    };
-    return rises(f0) && rises(f1);
-}
-
-OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o) {
+OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const ModelQuery* model) {
     OverhangSamples res;
-    const double s = o.sampling_distance;
+    const double s = o.sampling_distance, reach = coverage_reach(s);
     auto cls = classify_faces(m, o);
-    std::vector<Vec3> lattice, extra;
-    std::vector<SampleKind> extra_kind;
-    std::vector<char> face_caught(m.faces.size(), 0);
-
-    for (size_t i = 0; i < m.faces.size(); ++i) {
-        if (!cls[i]) continue;
-        const auto& f = m.faces[i];
-        ++res.overhang_faces;
-        res.overhang_area += 0.5 * norm(face_normal_unnormalized(m, f));
-        size_t before = lattice.size();
-        rasterize_triangle(m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], s, lattice);
-        face_caught[i] = lattice.size() > before;
-    }
-
-    // Edges: region borders (one side needs support) and downward convex ridges.
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> edge_faces;
-    edge_faces.reserve(m.faces.size() * 2);
-    for (std::uint32_t fi = 0; fi < m.faces.size(); ++fi)
-        for (int k = 0; k < 3; ++k) edge_faces[edge_key(m.faces[fi][k], m.faces[fi][(k + 1) % 3])].push_back(fi);
-    std::vector<std::uint64_t> keys;
-    keys.reserve(edge_faces.size());
-    for (const auto& kv : edge_faces) keys.push_back(kv.first);
-    std::sort(keys.begin(), keys.end());  // deterministic order
-    const double sin_c = std::sin(o.critical_angle * M_PI / 180.0);
-    for (auto key : keys) {
-        const auto& fs = edge_faces[key];
-        auto a = static_cast<std::uint32_t>(key >> 32), b = static_cast<std::uint32_t>(key & 0xffffffffu);
-        const Vec3 &pa = m.vertices[a], &pb = m.vertices[b];
-        if (std::max(pa.z, pb.z) <= o.bed_height * 0.5) continue;
-        int over = 0;
-        for (auto f : fs) over += cls[f];
-        // Convex edge: the far corner of the second face lies behind the first face's plane.
-        auto convex = [&] {
-            const auto& g = m.faces[fs[1]];
-            std::uint32_t far = g[0] != a && g[0] != b ? g[0] : (g[1] != a && g[1] != b ? g[1] : g[2]);
-            return dot(normalized(face_normal_unnormalized(m, m.faces[fs[0]])), m.vertices[far] - pa) < 0;
-        };
-        // A border where the overhang meets a wall going down from it (an inside corner) rests
-        // on that wall; only convex borders (lips) need their own samples.
-        bool any_border = over > 0 && over < static_cast<int>(fs.size());
-        bool border = any_border && (fs.size() != 2 || convex());
-        if (any_border && !border) sample_segment(pa, pb, s, res.anchors);
-        bool open_border = fs.size() == 1 && over == 1;
-        bool ridge = false;
-        if (fs.size() == 2 && over == 0) {
-            Vec3 n1 = normalized(face_normal_unnormalized(m, m.faces[fs[0]]));
-            Vec3 n2 = normalized(face_normal_unnormalized(m, m.faces[fs[1]]));
-            ridge = (normalized(n1 + n2).z < -sin_c && convex()) || hanging_keel(m, fs[0], fs[1], a, b, n1, n2, sin_c);
-        }
-        if (!(border || open_border || ridge)) continue;
-        res.ridge_edges += ridge;
-        size_t before = extra.size();
-        sample_segment(pa, pb, s, extra);
-        extra_kind.resize(extra.size(), SampleKind::Edge);
-        (void)before;
-    }
-
-    // Points: vertices lower than all their neighbours.
-    std::vector<double> min_neighbour_z(m.vertices.size(), INFINITY);
-    for (const auto& f : m.faces)
-        for (int k = 0; k < 3; ++k) {
-            auto v = f[k];
-            min_neighbour_z[v] = std::min({min_neighbour_z[v], m.vertices[f[(k + 1) % 3]].z, m.vertices[f[(k + 2) % 3]].z});
-        }
-    for (size_t v = 0; v < m.vertices.size(); ++v) {
-        if (m.vertices[v].z < min_neighbour_z[v] && m.vertices[v].z > o.bed_height * 0.5) {
-            extra.push_back(m.vertices[v]);
-            extra_kind.push_back(SampleKind::Point);
-            ++res.point_overhangs;
-        }
-    }
-
-    // Centroids of overhang faces that caught no lattice point.
-    for (size_t i = 0; i < m.faces.size(); ++i) {
-        if (!cls[i] || face_caught[i]) continue;
-        const auto& f = m.faces[i];
-        extra.push_back((m.vertices[f[0]] + m.vertices[f[1]] + m.vertices[f[2]]) / 3.0);
-        extra_kind.push_back(SampleKind::Centroid);
-    }
-
-    SampleGrid grid{s};
-    for (const auto& p : lattice) {
-        if (p.z < o.bed_height) continue;
+    auto rests = [&](const Vec3& x) { return model && rests_on_material(*model, x, o.touching_space); };
+    auto add = [&](const Vec3& p, SampleKind kind, CoverGrid& grid) {
         grid.add(p);
-        res.samples.push_back({p, SampleKind::Face});
-    }
-    // Points first (a local minimum must keep its exact position), then edges, then centroids.
-    for (SampleKind kind : {SampleKind::Point, SampleKind::Edge, SampleKind::Centroid}) {
-        for (size_t i = 0; i < extra.size(); ++i) {
-            if (extra_kind[i] != kind || extra[i].z < o.bed_height) continue;
-            if (grid.near(extra[i], 0.5 * s)) continue;
-            grid.add(extra[i]);
-            res.samples.push_back({extra[i], kind});
+        res.samples.push_back({p, kind});
+    };
+
+    // The lattice, and what needs no sample: inside corners. A lattice point resting on material
+    // below gets no contact, but the overhang is printed onto that material there and bridges
+    // from it, as from an inside corner (`check` judges it so at the same lattice points).
+    CoverGrid lattice{reach, o.critical_angle}, grid{reach - kReachMarginOfSpacing * s, o.critical_angle};
+    for (const auto& p : lattice_samples(m, cls, s, res))
+        if (p.z >= o.bed_height) add(p, SampleKind::Face, lattice);
+    auto edges = support_edges(m, cls, o, res);
+    for (const auto& a : res.anchors) grid.add(a);
+    auto covered = [&](const Vec3& x, double above = INFINITY) { return lattice.covered(x, above) || grid.covered(x, above); };
+
+    // What coverage is judged on: local minima, rims and ridges, the faces.
+    auto minima = local_minima(m, o);
+    res.point_overhangs = minima.size();
+    std::vector<std::vector<Vec3>> along(edges.size());
+    for (size_t e = 0; e < edges.size(); ++e) along[e] = edge_points(edges[e], reach);
+    auto faces = face_demand(m, cls, s / kDemandRefinement);
+
+    // A point needs a sample near it unless it lies in the first layer, is covered, or rests on
+    // material below (it needs none itself; off the lattice it covers nothing, since `check` may
+    // judge no resting point near it).
+    auto needs = [&](const Vec3& x, double above = INFINITY) {
+        return x.z >= o.bed_height && !covered(x, above) && !rests(x);
+    };
+    // A local minimum is where an overhang starts printing: it keeps a sample of its own unless
+    // another lies within reach and no higher than half a layer above it.
+    for (const auto& x : minima)
+        if (needs(x, 0.5 * o.bed_height)) add(x, SampleKind::Point, grid);
+    // Rims and ridges: at the first uncovered point, a sample as far along the edge as still
+    // covers it, so each rim sample serves the most edge it can.
+    for (const auto& pts : along)
+        for (size_t i = 0; i < pts.size(); ++i) {
+            if (!needs(pts[i])) continue;
+            size_t j = i;
+            while (j + 1 < pts.size() && covers(pts[j + 1], pts[i], kEdgeAdvance * (reach - kReachMarginOfSpacing * s), o.critical_angle)) ++j;
+            while (j > i && (pts[j].z < o.bed_height || rests(pts[j]))) --j;
+            add(pts[j], SampleKind::Edge, grid);
         }
-    }
+    // Whatever the lattice and the rims still miss inside the faces: a gap fill at the point.
+    for (const auto& x : faces)
+        if (needs(x)) add(x, SampleKind::Centroid, grid);
+
     std::sort(res.samples.begin(), res.samples.end(), [](const Sample& a, const Sample& b) {
         if (a.p.z != b.p.z) return a.p.z > b.p.z;
         if (a.p.x != b.p.x) return a.p.x < b.p.x;

@@ -1,13 +1,19 @@
 // Which parts of the placed model need support, and the points that will carry it
-// (algorithm.md section 2).
+// (docs/algorithm.md section 2).
 //
 // A face needs support when its outward normal n has n_z < -sin(critical angle), unless it lies on
 // the bed. Face overhangs are sampled on ONE global XY lattice of spacing `sampling_distance`, so
 // neighbouring faces share it without gaps or doubles (a lattice point on a shared edge belongs to
-// exactly one face, by the top-left rule of rasterisers). Edges and points add samples where the
-// lattice cannot reach: overhang region borders, downward ridges, local minima, and small faces
-// that catch no lattice point (their centroid). Those extras are dropped when a sample already
-// lies within half the sampling distance, so density stays what the user asked for.
+// exactly one face, by the top-left rule of rasterisers). Extras are added only where coverage needs
+// them (lean sampling): every overhang point must have a sample within `reach` = (sqrt 2 / 2) *
+// sampling distance horizontally, on the same surface (the largest gap a square lattice leaves).
+// Points the lattice leaves uncovered get, in this order: local minima (at their exact position),
+// rims and downward ridges (one sample per 2 * reach of edge, placed as far along the edge as still
+// covers the first uncovered point), and gap fills inside faces (a face point the lattice and the
+// rims miss; also small faces that catch no lattice point). Inside corners where an overhang meets
+// a wall going down need no sample and cover their neighbours within reach. Points with material
+// within touching space below need no sample; lattice points among them cover their neighbours
+// (the overhang bridges from the material there), other points do not.
 #pragma once
 
 #include <vector>
@@ -16,6 +22,9 @@
 
 namespace cs {
 
+class ModelQuery;
+
+// Face: a lattice point. Centroid: a gap fill, a face point the lattice and the rims leave uncovered.
 enum class SampleKind { Face, Edge, Point, Centroid };
 
 struct Sample {
@@ -35,7 +44,21 @@ struct OverhangOptions {
     double critical_angle = 50;     // degrees from vertical
     double sampling_distance = 2.5;
     double bed_height = 0.2;        // samples below this lie in the first layer: printed on the bed
+    double touching_space = 0.6;    // free space below a point under which it rests on what is below
+                                    // (the tree's touching_space: two z gaps and a layer)
 };
+
+// Horizontal distance within which a support contact covers an overhang point: half the diagonal of
+// a lattice cell, the largest gap a square lattice of this spacing leaves.
+double coverage_reach(double sampling_distance);
+
+// Does a sample at `sample` cover the overhang point `x`? Within coverage_reach horizontally and on
+// the same surface: no further up or down than the steepest overhang rises over that reach.
+bool covers(const Vec3& sample, const Vec3& x, double reach, double critical_angle_deg);
+
+// Does an overhang point rest on material below it (inside overlapping shells, or with at most
+// `touching_space` of air below)? Such a point needs no support (and gets no contact).
+bool rests_on_material(const ModelQuery& model, const Vec3& x, double touching_space);
 
 // True when a face with unit outward normal `n` must be supported.
 bool needs_support(const Vec3& unit_normal, double critical_angle_deg);
@@ -49,7 +72,8 @@ double overhang_area(const Mesh& m, const OverhangOptions& o);
 // Lattice samples of one triangle (projected to XY), by the top-left rule; z from its plane.
 void rasterize_triangle(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, std::vector<Vec3>& out);
 
-// All support points of the placed model.
-OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o);
+// All support points of the placed model. With `model` (an index of the same mesh), points resting
+// on material below need no sample; without it every point is judged as hanging in the air.
+OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const ModelQuery* model = nullptr);
 
 }  // namespace cs

@@ -214,13 +214,13 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         r.warnings.push_back(input + ": the model is " + std::to_string(largest) +
                              " mm across (over 1 m); if its units are not millimetres use --scale or --fit MM");
 
-    OverhangOptions oo{p.critical_angle, p.sampling_distance, p.layer_height};
+    OverhangOptions oo{p.critical_angle, p.sampling_distance, p.layer_height, touching_space(p)};
     // Candidate poses are compared by trees grown from samples twice as sparse: a quarter of the
     // work, and the ranking of poses holds (the chosen pose's tree is then grown in full).
     Params coarse = p;
     coarse.sampling_distance = 2 * p.sampling_distance;
     coarse.keep_out.clear();  // a user's blockers are in the chosen pose's coordinates
-    OverhangOptions coarse_oo{p.critical_angle, coarse.sampling_distance, p.layer_height};
+    OverhangOptions coarse_oo{p.critical_angle, coarse.sampling_distance, p.layer_height, touching_space(p)};
     r.orientation = sw.time("orient", progress, [&] {
         return choose_orientation(scaled, p, job.orient, [&](const Mesh& rotated) {
             Placement pl;
@@ -235,10 +235,11 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     r.placement.scale = scale;
     scaled = Mesh();
 
-    r.samples = sw.time("overhangs", progress, [&] { return sample_overhangs(r.model, oo); });
-    // One index of the model serves the tree and the baseline (on a 5M-triangle scan it takes
-    // seconds and most of a gigabyte).
+    // One index of the model serves the sampling, the tree and the baseline (on a 5M-triangle scan
+    // it takes seconds and most of a gigabyte).
     auto query = sw.time("model index", progress, [&] { return std::make_unique<ModelQuery>(r.model); });
+    // With the index, points resting on material below need no sample (as `check` judges them).
+    r.samples = sw.time("overhangs", progress, [&] { return sample_overhangs(r.model, oo, query.get()); });
     if (!job.edits.empty()) {
         size_t before = r.samples.samples.size();
         r.samples.samples = edited_samples(*query, std::move(r.samples.samples), job.edits, p);

@@ -1,4 +1,4 @@
-// From a support tree to printable solids (algorithm.md section 4).
+// From a support tree to printable solids (docs/algorithm.md section 4).
 //
 // size_struts gives every strut a width at each end:
 //   node width   leaf: d_min; one strut in: its lower width; several: merged_width (Murray's rule)

@@ -84,8 +84,9 @@ private:
 enum class Target { InCone, Merge, Model, Bed, SteepModel };
 
 struct Candidate {
-    double dist;
+    double dist;     // strut length
     Target type;
+    double span = 0; // how far down the node stays an island of its own: what a slicer pays for
     int other = -1;  // the partner node of a merge
     Vec3 point;      // merge point, contact node, or bed point
     Vec3 contact;    // model point below a contact node
@@ -100,6 +101,8 @@ public:
         vertical_only_[0] = 1;
         slanted_only_.assign(fan_.size(), 1);
         slanted_only_[0] = 0;
+        fan_cos_min_ = 1;
+        for (const auto& d : fan_) fan_cos_min_ = std::min(fan_cos_min_, -d.z);
     }
 
     SupportTree run(const std::vector<Sample>& samples) {
@@ -281,19 +284,22 @@ private:
                 if (i > 0 && !tree()) continue;
                 Vec3 node = contact_node(hit->point, a.z);
                 if (i > 0 && !in_cone(a, node)) continue;
-                out.push_back({hit->distance, can_stand_on(hit->face) ? Target::Model : Target::SteepModel, -1, node,
-                               hit->point});
+                out.push_back({hit->distance, can_stand_on(hit->face) ? Target::Model : Target::SteepModel, a.z - node.z,
+                               -1, node, hit->point});
             } else {
                 // The bed along a slanted ray: longer than straight down, so taken only when the
                 // vertical is blocked (or, buildplate-only, when the model is in the way).
                 double len = a.z / -d.z;
-                out.push_back({len, Target::Bed, -1, a + d * len, {}});
+                out.push_back({len, Target::Bed, a.z, -1, a + d * len, {}});
             }
         }
     }
 
-    static void by_distance(std::vector<Candidate>& c) {
+    // Cheapest for the slicer first (island_cost): the fewest layers this node stays an island of
+    // its own, so branches join as high as they can and trunks carry them down; then the shorter strut.
+    static void by_cost(std::vector<Candidate>& c) {
         std::sort(c.begin(), c.end(), [](const Candidate& x, const Candidate& y) {
+            if (x.span != y.span) return x.span < y.span;
             if (x.dist != y.dist) return x.dist < y.dist;
             if (x.type != y.type) return x.type < y.type;
             return x.other < y.other;
@@ -318,16 +324,17 @@ private:
 
     void collect_merges(int id, double bound, std::vector<Candidate>& out) {
         const Vec3 a = t_.nodes[id].p;
-        // A partner at horizontal distance D gives a strut of at least D * lb (algorithm.md section 3).
-        const double lb = std::min(1.0, 1.0 / (2 * std::sin(p_.critical_angle * kDeg)));
+        // A partner at horizontal distance D meets this node at least D / (2 tan c) lower (both
+        // at one height meet half-way; a lower partner meets lower still).
+        const double lb = 1.0 / (2 * tan_c_);
         const size_t keep = 6;
         std::vector<Candidate> found;
         auto kth = [&] {
             if (found.size() < keep) return bound;
             std::nth_element(found.begin(), found.begin() + (keep - 1), found.end(),
-                             [](const Candidate& x, const Candidate& y) { return x.dist < y.dist; });
+                             [](const Candidate& x, const Candidate& y) { return x.span < y.span; });
             found.resize(keep);
-            return std::min(bound, found.back().dist);
+            return std::min(bound, found.back().span);
         };
         grid_.visit_near(
             a,
@@ -337,9 +344,9 @@ private:
                 if (b.z > a.z || (b.z == a.z && q < id)) return;  // only nodes the sweep has not passed
                 Vec3 s = merge_point(a, b, tan_c_);
                 if (s.z < p_.layer_height) return;
-                double d = distance(a, s);
-                if (d < 1e-9 || d >= bound) return;
-                found.push_back({d, s == b ? Target::InCone : Target::Merge, q, s, {}});
+                double d = distance(a, s), span = a.z - s.z;
+                if (d < 1e-9 || span >= bound) return;
+                found.push_back({d, s == b ? Target::InCone : Target::Merge, span, q, s, {}});
             },
             [&](double ring) { return ring * lb >= kth(); });
         for (auto& c : found) out.push_back(c);
@@ -373,22 +380,23 @@ private:
             accept(id, cands[0]);
             return;
         }
-        // Nearer than straight down is all that can win: the fan only looks that far at first.
-        double bound = cands.empty() ? INFINITY : cands[0].dist;
+        // Less of a drop than straight down is all that can win: the fan only looks as far as a
+        // slanted ray can go within that drop at first.
+        double bound = cands.empty() ? INFINITY : cands[0].span;
         std::vector<char> skipped(fan_.size(), 0);
-        collect_contacts(id, cands, bound, &skipped, &slanted_only_);
+        collect_contacts(id, cands, bound / fan_cos_min_, &skipped, &slanted_only_);
         bound = INFINITY;
-        for (const auto& c : cands) bound = std::min(bound, c.dist);
+        for (const auto& c : cands) bound = std::min(bound, c.span);
         if (tree()) collect_merges(id, bound * (1 + 1e-9), cands);
-        by_distance(cands);
+        by_cost(cands);
         if (take_first_clear(id, cands)) return;
         // Nothing near fits: the farther fan (slanted landings beyond the vertical's reach).
         std::vector<Candidate> far;
         collect_contacts(id, far, INFINITY, nullptr, &skipped);
-        by_distance(far);
+        by_cost(far);
         if (take_first_clear(id, far)) return;
         cands.insert(cands.end(), far.begin(), far.end());
-        by_distance(cands);
+        by_cost(cands);
         if (step_down(id)) return;
         // In a tight spot, give up the extra air before giving up clearance altogether.
         for (const auto& c : cands) {
@@ -519,7 +527,7 @@ private:
         }
         if (best_drop < 0.5) return false;
         if (best.z < 1e-6) {
-            accept(id, {best_drop, Target::Bed, -1, {best.x, best.y, 0}, {}});
+            accept(id, {best_drop, Target::Bed, best_drop, -1, {best.x, best.y, 0}, {}});
             return true;
         }
         retire(id);
@@ -537,6 +545,7 @@ private:
     double tan_c_;
     std::vector<Vec3> fan_;
     std::vector<char> vertical_only_, slanted_only_;  // masks over fan_
+    double fan_cos_min_;                              // cosine of the fan's steepest slant
     SupportTree t_;
     std::vector<double> width_;  // estimated width at each node, for clearance
     std::vector<char> active_;
@@ -623,6 +632,81 @@ bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec
         if (model.squared_distance(a + (b - a) * t) < r * r) return false;
     }
     return true;
+}
+
+namespace {
+
+// Prices of the slicer cost model, for CuraEngine 4.13 with the bench profile (0.2 mm layers,
+// acceleration 1500 mm/s^2, support as a support mesh with one wall and no infill); checked against
+// its G-code in bench/results/tree_shape.md.
+// Each island costs a stop and a start: accelerating to and from a hop of a few mm at 1500 mm/s^2
+// takes about 2 * sqrt(d / a) = 0.1 s for d = 4 mm, the outline's seam adds its own stop, and some
+// hops retract. What the G-code of four models leaves after outline and travel: 0.20-0.26 s.
+constexpr double kIslandSeconds = 0.2;
+// Outlines of 1 to 4 mm struts are drawn in segments of a few mm: at 1500 mm/s^2 they average well
+// below the 60 mm/s support speed.
+constexpr double kOutlineMmPerSecond = 30;
+// Travel between islands at 150 mm/s, slowed the same way by acceleration over hops of a few mm.
+constexpr double kTravelMmPerSecond = 100;
+
+// Outline of one layer of a strut of width w: its square. CuraEngine closes the N-profile's narrow
+// holes in a support area and walls the outside only (the G-code of four models drew 0.49-0.56 of
+// the length that walling the holes too would take).
+double outline_per_layer(double w) { return 4 * w; }
+
+// A piece of support between two heights, an island on every layer in between.
+struct Upright {
+    Vec3 top, bottom;
+    double width;
+};
+
+std::vector<Upright> uprights(const SupportTree& t, const std::vector<double>& strut_width, const Params& p) {
+    std::vector<Upright> out;
+    for (size_t i = 0; i < t.struts.size(); ++i)
+        out.push_back({t.nodes[t.struts[i].top].p, t.nodes[t.struts[i].bottom].p, strut_width[i]});
+    const double tip_width = 0.5 * (p.tip_diameter + p.d_min);
+    for (const auto& n : t.nodes) {
+        if (n.kind == NodeKind::Leaf) out.push_back({n.tip, n.p, tip_width});
+        if (n.kind == NodeKind::ModelContact) out.push_back({n.p, n.contact, tip_width});
+    }
+    for (const auto& pl : t.pillars) out.push_back({pl.top, pl.bottom, p.d_min});
+    return out;
+}
+
+// Length of a path through the points, always on to the nearest one not yet visited.
+double nearest_next_path(std::vector<Vec3> pts) {
+    double len = 0;
+    for (size_t i = 0; i + 1 < pts.size(); ++i) {
+        size_t best = i + 1;
+        for (size_t j = i + 2; j < pts.size(); ++j)
+            if (horizontal_distance(pts[i], pts[j]) < horizontal_distance(pts[i], pts[best])) best = j;
+        std::swap(pts[i + 1], pts[best]);
+        len += horizontal_distance(pts[i], pts[i + 1]);
+    }
+    return len;
+}
+
+}  // namespace
+
+SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>& strut_width, const Params& p) {
+    SlicerCost c;
+    auto ups = uprights(t, strut_width, p);
+    double top = 0;
+    for (const auto& u : ups) top = std::max(top, u.top.z);
+    const double h = p.layer_height;
+    for (double z = 0.5 * h; z < top; z += h) {
+        std::vector<Vec3> islands;
+        for (const auto& u : ups) {
+            if (u.top.z < z || u.bottom.z > z || u.top.z == u.bottom.z) continue;
+            islands.push_back(u.bottom + (u.top - u.bottom) * ((z - u.bottom.z) / (u.top.z - u.bottom.z)));
+            c.outline_mm += outline_per_layer(u.width);
+        }
+        c.island_layers += islands.size();
+        c.most_islands = std::max(c.most_islands, islands.size());
+        c.travel_mm += nearest_next_path(std::move(islands));
+    }
+    c.seconds = c.island_layers * kIslandSeconds + c.outline_mm / kOutlineMmPerSecond + c.travel_mm / kTravelMmPerSecond;
+    return c;
 }
 
 SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p) {

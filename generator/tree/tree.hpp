@@ -1,8 +1,9 @@
-// The support tree: greedy cone merging, top down (algorithm.md section 3).
+// The support tree: greedy cone merging, top down (docs/algorithm.md section 3).
 //
 // Every overhang sample hangs a leaf node one tip below it. Sweeping from the highest active node
-// down, each node takes the nearest of: a meeting point with another active node's cone
-// (merge_point), the first model point in its cone (first_hit_in_cone), or the bed straight below.
+// down, each node ranks its candidates (fewest layers left as an island of its own, then
+// shortest): a meeting point with another active node's cone (merge_point), the first model point
+// in its cone (first_hit_in_cone), or the bed straight below.
 // Each candidate strut is tried against the model with clearance (strut_is_clear); the first that
 // passes wins. With `supports_on_model = false` the model is an obstacle only and nodes route down
 // to the bed around it. The `columns` strategy is the same sweep without merges or slanted struts:
@@ -77,7 +78,7 @@ double touching_space(const Params& p);
 // tip's square top needs under the steepest overhang that needs support.
 double contact_tolerance(const Params& p);
 
-// Highest point where the downward cones of apexes a and b meet (algorithm.md section 3):
+// Highest point where the downward cones of apexes a and b meet (docs/algorithm.md section 3):
 // b itself when it lies in a's cone, else the top of the cones' intersection. a must not be lower
 // than b. tan_c = tan(critical angle).
 Vec3 merge_point(const Vec3& a, const Vec3& b, double tan_c);
@@ -93,6 +94,21 @@ std::optional<Vec3> first_hit_in_cone(const ModelQuery& model, const Vec3& apex,
 // `onto_model`: b is a contact node a tip's length above the model, where only the edges judge.
 bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance,
                     bool onto_model = false);
+
+// What a slicer spends printing a tree as a support mesh (CuraEngine with one support wall and no
+// infill, the route of shared/notes/slicer-handoff.md). On every layer each strut, tip and pillar
+// crossing it is an island: the nozzle travels to it and draws its outline once. The tree's sweep
+// ranks its candidates by the first term (the layers a node stays an island of its own).
+struct SlicerCost {
+    double island_layers = 0;  // islands, summed over the layers
+    double outline_mm = 0;     // outline drawn, summed over the layers
+    double travel_mm = 0;      // travel between the islands of each layer, nearest island next
+    double seconds = 0;        // all three, priced by the constants in tree.cpp
+    std::size_t most_islands = 0;  // islands in the busiest layer
+};
+
+// `strut_width`: the mean width of each strut of `t` (parallel to t.struts).
+SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>& strut_width, const Params& p);
 
 // Grows the support tree (or the columns baseline, by p.strategy) for the given samples.
 SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p);

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "overhang/overhang.hpp"
+#include "query/model_query.hpp"
 #include "shapes.hpp"
 #include "support.hpp"
 
@@ -74,6 +75,71 @@ std::string describe(const std::map<std::pair<long, long>, int>& got, const std:
 }
 
 OverhangOptions default_options() { return {50, 1.5, 0.2}; }
+
+// The coverage rule, written out here on its own: a support within (sqrt 2 / 2) * spacing
+// horizontally, and no further up or down than the steepest overhang rises over that distance.
+bool covered_by(const std::vector<Vec3>& supports, const Vec3& x, const OverhangOptions& o) {
+    const double reach = std::sqrt(0.5) * o.sampling_distance;
+    const double rise = reach * std::tan((90 - o.critical_angle) * kDeg);
+    for (const auto& q : supports)
+        if (std::hypot(q.x - x.x, q.y - x.y) <= reach && std::abs(q.z - x.z) <= rise) return true;
+    return false;
+}
+
+// Overhang points judged far more densely than the sampler looks: a sixteenth of the spacing inside
+// faces, every corner and centroid, and every overhang face's edges at a thirty-second.
+std::vector<Vec3> dense_overhang_points(const Mesh& m, const OverhangOptions& o) {
+    auto cls = classify_faces(m, o);
+    std::vector<Vec3> pts;
+    for (size_t i = 0; i < m.faces.size(); ++i) {
+        if (!cls[i]) continue;
+        const auto& f = m.faces[i];
+        rasterize_triangle(m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], o.sampling_distance / 16, pts);
+        pts.push_back((m.vertices[f[0]] + m.vertices[f[1]] + m.vertices[f[2]]) / 3.0);
+        for (int k = 0; k < 3; ++k) {
+            const Vec3 &a = m.vertices[f[k]], &b = m.vertices[f[(k + 1) % 3]];
+            int n = std::max(1, static_cast<int>(std::ceil(distance(a, b) / (o.sampling_distance / 32))));
+            for (int t = 0; t <= n; ++t) pts.push_back(a + (b - a) * (double(t) / n));
+        }
+    }
+    std::erase_if(pts, [&](const Vec3& p) { return p.z < o.bed_height; });
+    return pts;
+}
+
+// Dense overhang points with no sample or anchor covering them.
+std::vector<Vec3> uncovered(const Mesh& m, const OverhangSamples& res, const OverhangOptions& o) {
+    std::vector<Vec3> supports = res.anchors;
+    for (const auto& s : res.samples) supports.push_back(s.p);
+    std::vector<Vec3> out;
+    for (const auto& x : dense_overhang_points(m, o))
+        if (!covered_by(supports, x, o)) out.push_back(x);
+    return out;
+}
+
+// The bottom of a UV sphere (radius r, centre c) with `rings` x `segments` faces: a curved
+// overhang whose rim lies between faces, with a pole at its lowest point.
+Mesh uv_sphere(const Vec3& c, double r, int rings, int segments) {
+    Mesh m;
+    m.vertices.push_back(c - Vec3{0, 0, r});
+    for (int i = 1; i < rings; ++i) {
+        double th = M_PI * i / rings;
+        for (int j = 0; j < segments; ++j) {
+            double ph = 2 * M_PI * j / segments + 0.37 * i;  // twisted rings: faces off the lattice
+            m.vertices.push_back(c + Vec3{r * std::sin(th) * std::cos(ph), r * std::sin(th) * std::sin(ph), -r * std::cos(th)});
+        }
+    }
+    m.vertices.push_back(c + Vec3{0, 0, r});
+    auto at = [&](int i, int j) { return static_cast<std::uint32_t>(1 + (i - 1) * segments + (j % segments)); };
+    const auto top = static_cast<std::uint32_t>(m.vertices.size() - 1);
+    for (int j = 0; j < segments; ++j) m.faces.push_back({0, at(1, j + 1), at(1, j)});
+    for (int i = 1; i + 1 < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            m.faces.push_back({at(i, j), at(i, j + 1), at(i + 1, j + 1)});
+            m.faces.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
+        }
+    for (int j = 0; j < segments; ++j) m.faces.push_back({at(rings - 1, j), at(rings - 1, j + 1), top});
+    return m;
+}
 
 }  // namespace
 
@@ -149,11 +215,7 @@ TEST(SampleOverhangs, TShapeSamplesExactlyUnderThePlate) {
         for (long j = -3; j <= 3; ++j)
             if (!(std::abs(i) <= 1 && std::abs(j) <= 1)) want[{i, j}] = 1;
     EXPECT_EQ(face, want) << describe(face, want);
-    // Extras (edges) keep at least half a spacing from every other sample.
-    for (size_t a = 0; a < res.samples.size(); ++a)
-        for (size_t b = a + 1; b < res.samples.size(); ++b)
-            if (res.samples[a].kind != SampleKind::Face || res.samples[b].kind != SampleKind::Face)
-                EXPECT_GE(distance(res.samples[a].p, res.samples[b].p), 0.75 - 1e-9);
+    EXPECT_TRUE(uncovered(t, res, o).empty());
 }
 
 TEST(SampleOverhangs, DownwardOctahedronTipIsAPointSample) {
@@ -206,12 +268,121 @@ TEST(SampleOverhangs, DownwardRidgeIsSampledAlongItsLength) {
     auto res = sample_overhangs(m, default_options());
     EXPECT_EQ(res.overhang_faces, 0u);
     EXPECT_EQ(res.ridge_edges, 1u);
-    ASSERT_EQ(res.samples.size(), 7u);  // 9 mm at 1.5 mm: both ends and 5 between
+    // Each sample covers the reach on both sides: 9 mm takes 5 (the old rule, a sample every
+    // spacing, took 7), and every point of the ridge is within reach of one.
+    EXPECT_LE(res.samples.size(), 5u);
     for (const auto& s : res.samples) {
         EXPECT_EQ(s.kind, SampleKind::Edge);
         EXPECT_EQ(s.p.y, 0);
         EXPECT_EQ(s.p.z, 5);
     }
+    std::vector<Vec3> pts;
+    for (const auto& s : res.samples) pts.push_back(s.p);
+    for (double x = 0; x <= 9; x += 0.05) EXPECT_TRUE(covered_by(pts, {x, 0, 5}, default_options())) << "ridge at x " << x;
+}
+
+// ---------------------------------------------------------------- lean sampling
+
+TEST(LeanSampling, EveryOverhangPointIsCoveredWithinReach) {
+    // Flat plates, a curved cap with a pole and a twisted rim, at two spacings.
+    std::vector<Mesh> shapes{cs::test::t_shape(), cs::test::bridge_shape(), cs::test::cantilever_over_box(),
+                             uv_sphere({0.3, -0.2, 12}, 8, 14, 22)};
+    for (double s : {1.5, 2.5})
+        for (size_t i = 0; i < shapes.size(); ++i) {
+            SCOPED_TRACE("shape " + std::to_string(i) + " spacing " + std::to_string(s));
+            OverhangOptions o{50, s, 0.2};
+            auto res = sample_overhangs(shapes[i], o);
+            auto holes = uncovered(shapes[i], res, o);
+            EXPECT_TRUE(holes.empty()) << holes.size() << " uncovered, first at " << holes[0].x << ", " << holes[0].y
+                                       << ", " << holes[0].z;
+        }
+}
+
+TEST(LeanSampling, EveryExtraCoversAPointTheLatticeLeavesOpen) {
+    // No extra stands where the lattice (and the inside corners) already cover everything around it.
+    size_t total_extras = 0;
+    for (const Mesh& m : {cs::test::t_shape(), uv_sphere({0.3, -0.2, 12}, 8, 14, 22)}) {
+        auto o = default_options();
+        auto res = sample_overhangs(m, o);
+        std::vector<Vec3> lattice = res.anchors;
+        for (const auto& s : res.samples)
+            if (s.kind == SampleKind::Face) lattice.push_back(s.p);
+        auto open = dense_overhang_points(m, o);
+        std::erase_if(open, [&](const Vec3& x) { return covered_by(lattice, x, o); });
+        size_t extras = 0;
+        for (const auto& s : res.samples) {
+            if (s.kind == SampleKind::Face) continue;
+            ++extras;
+            EXPECT_TRUE(covered_by({s.p}, s.p, o));
+            bool needed = std::any_of(open.begin(), open.end(), [&](const Vec3& x) { return covered_by({s.p}, x, o); });
+            EXPECT_TRUE(needed) << "extra at " << s.p.x << ", " << s.p.y << ", " << s.p.z;
+        }
+        total_extras += extras;
+    }
+    EXPECT_GT(total_extras, 0u);  // the T's rims need some
+}
+
+TEST(LeanSampling, TheLowestPointHasASampleAtItsHeight) {
+    // The pole of a cap is where it starts printing: a sample within reach and at most half a
+    // layer above it carries its first layer (a lattice point, or the pole itself).
+    for (double s : {1.5, 2.5, 4.0}) {
+        OverhangOptions o{50, s, 0.2};
+        auto res = sample_overhangs(uv_sphere({0.3, -0.2, 12}, 8, 14, 22), o);
+        ASSERT_FALSE(res.samples.empty());
+        const Vec3 pole{0.3, -0.2, 4};
+        const Sample& low = res.samples.back();
+        EXPECT_LE(horizontal_distance(low.p, pole), coverage_reach(s));
+        EXPECT_LE(low.p.z, pole.z + 0.5 * o.bed_height);
+    }
+}
+
+TEST(LeanSampling, PointsRestingOnMaterialNeedNoExtras) {
+    // A slab hovering 0.4 mm over a block (within touching space): every point of its underside
+    // rests on the block. With the model index the sampler adds nothing beyond the lattice; without
+    // it, it cannot know and samples the rims too.
+    Mesh m = box({0.3, 0.3, 0}, {9.7, 9.7, 3});
+    append(m, box({0.3, 0.3, 3.4}, {9.7, 9.7, 5}));
+    ModelQuery q(m);
+    auto o = default_options();
+    auto with = sample_overhangs(m, o, &q), without = sample_overhangs(m, o);
+    for (const auto& s : with.samples) EXPECT_EQ(s.kind, SampleKind::Face);
+    EXPECT_GT(without.samples.size(), with.samples.size());
+}
+
+TEST(LeanSampling, PointsInTheAirAreCoveredBySamplesThatGetAContact) {
+    // The T with a block under one wing, 0.4 mm below the plate (within touching space): the
+    // points over the block rest on it. Every other point has within reach a sample that does not
+    // rest (it gets a tip), an inside corner, or a lattice point over the block (the plate is
+    // printed onto the block there and bridges from it); never only an off-lattice resting point.
+    Mesh m = cs::test::t_shape();
+    append(m, box({4.3, -5.3, 0}, {11.3, 5.3, 9.6}));
+    ModelQuery q(m);
+    OverhangOptions o = default_options();
+    auto res = sample_overhangs(m, o, &q);
+    std::vector<Vec3> carriers = res.anchors;
+    for (const auto& s : res.samples)
+        if (s.kind == SampleKind::Face || !rests_on_material(q, s.p, o.touching_space)) carriers.push_back(s.p);
+    size_t in_air = 0;
+    for (const auto& x : dense_overhang_points(m, o)) {
+        if (rests_on_material(q, x, o.touching_space)) continue;
+        ++in_air;
+        EXPECT_TRUE(covered_by(carriers, x, o)) << "uncovered at " << x.x << ", " << x.y << ", " << x.z;
+    }
+    EXPECT_GT(in_air, 0u);
+    // Extras never stand where they would rest (no tip is built there).
+    for (const auto& s : res.samples)
+        if (s.kind != SampleKind::Face) EXPECT_FALSE(rests_on_material(q, s.p, o.touching_space));
+}
+
+TEST(LeanSampling, CoverageRuleIsHorizontalReachOnTheSameSurface) {
+    EXPECT_NEAR(coverage_reach(2.5), 2.5 * std::sqrt(0.5), 1e-12);
+    const double reach = coverage_reach(2.0);
+    EXPECT_TRUE(covers({0, 0, 5}, {reach, 0, 5}, reach, 50));
+    EXPECT_FALSE(covers({0, 0, 5}, {reach + 1e-6, 0, 5}, reach, 50));
+    // Up or down the steepest overhang over the reach: still the same surface; beyond: another one.
+    const double rise = reach * std::tan(40 * kDeg);
+    EXPECT_TRUE(covers({0, 0, 5}, {0, 0, 5 + 0.99 * rise}, reach, 50));
+    EXPECT_FALSE(covers({0, 0, 5}, {0, 0, 5 - 1.01 * rise}, reach, 50));
 }
 
 TEST(SampleOverhangs, DeterministicAndSortedTopToBottom) {

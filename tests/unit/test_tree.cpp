@@ -366,3 +366,79 @@ TEST(GrowTree, LowOverhangsBecomePillarsOrRest) {
     EXPECT_TRUE(h->tree.struts.empty());
     EXPECT_EQ(h->tree.stats.touching, h->samples.samples.size());
 }
+
+// ---------------------------------------------------------------- shaped for printing
+
+namespace {
+
+// Two samples `apart` mm apart at z = 12 over an empty bed (the model is a small box far away).
+std::unique_ptr<Grown> two_samples(double apart, const Params& p) {
+    auto g = std::make_unique<Grown>();
+    g->model = cs::test::box({100, 100, 0}, {101, 101, 1});
+    g->query = std::make_unique<ModelQuery>(g->model);
+    g->samples.samples = {{{0, 0, 12}, SampleKind::Face}, {{apart, 0, 12}, SampleKind::Face}};
+    g->tree = grow_tree(*g->query, g->samples.samples, p);
+    return g;
+}
+
+std::vector<double> all_d_min(const SupportTree& t, const Params& p) { return std::vector<double>(t.struts.size(), p.d_min); }
+
+}  // namespace
+
+TEST(GrowTree, BranchesJoinWhenTheJoinLeavesFewerIslands) {
+    // 20 mm apart, leaves 10.8 mm up: the cones meet 2.4 mm above the bed. The struts to the join
+    // are longer (13 mm) than straight down, but each branch is an island of its own for 8.4 mm
+    // instead of 10.8: the sweep joins them, and one trunk goes down.
+    Params p;
+    auto g = two_samples(20, p);
+    expect_valid_tree(*g, p);
+    expect_every_leaf_reaches_ground(g->tree);
+    EXPECT_EQ(g->tree.stats.merges, 1u);
+    EXPECT_EQ(g->tree.stats.bed_contacts, 1u);
+    // 40 mm apart the cones would meet below the bed: two columns.
+    auto far = two_samples(40, p);
+    EXPECT_EQ(far->tree.stats.merges, 0u);
+    EXPECT_EQ(far->tree.stats.bed_contacts, 2u);
+}
+
+TEST(GrowTree, TreeCostsTheSlicerLessThanColumns) {
+    Params tree, columns;
+    columns.strategy = "columns";
+    for (const Mesh& m : {cs::test::t_shape(), cs::test::bridge_shape()}) {
+        auto t = grow(m, tree), c = grow(m, columns);
+        auto ct = estimate_slicer_cost(t->tree, all_d_min(t->tree, tree), tree);
+        auto cc = estimate_slicer_cost(c->tree, all_d_min(c->tree, columns), columns);
+        EXPECT_LT(ct.island_layers, cc.island_layers);
+        EXPECT_LE(ct.most_islands, cc.most_islands);  // at the top every leaf is an island in both
+        EXPECT_LT(ct.seconds, cc.seconds);
+    }
+}
+
+TEST(SlicerCost, CountsIslandsOutlineAndTravelPerLayer) {
+    // Two 1 mm columns 10 mm apart, 10 mm tall: 50 layers of 0.2 mm, two islands in each.
+    Params p;
+    SupportTree t;
+    t.nodes = {{{0, 0, 10}, NodeKind::Chain}, {{0, 0, 0}, NodeKind::Bed}, {{10, 0, 10}, NodeKind::Chain},
+               {{10, 0, 0}, NodeKind::Bed}};
+    t.struts = {{0, 1}, {2, 3}};
+    auto c = estimate_slicer_cost(t, {1.0, 1.0}, p);
+    EXPECT_DOUBLE_EQ(c.island_layers, 100);
+    EXPECT_EQ(c.most_islands, 2u);
+    EXPECT_NEAR(c.outline_mm, 100 * 4.0, 1e-9);  // a 1 mm square
+    EXPECT_NEAR(c.travel_mm, 50 * 10.0, 1e-9);
+    EXPECT_GT(c.seconds, 0);
+    // Joined half-way into one trunk: fewer islands, less travel, less time.
+    SupportTree j;
+    j.nodes = {{{0, 0, 10}, NodeKind::Chain}, {{10, 0, 10}, NodeKind::Chain}, {{5, 0, 5}, NodeKind::Merge},
+               {{5, 0, 0}, NodeKind::Bed}};
+    j.struts = {{0, 2}, {1, 2}, {2, 3}};
+    auto cj = estimate_slicer_cost(j, {1.0, 1.0, 1.26}, p);
+    EXPECT_LT(cj.island_layers, c.island_layers);
+    EXPECT_LT(cj.travel_mm, c.travel_mm);
+    EXPECT_LT(cj.seconds, c.seconds);
+    // A wide strut: the slicer walls its square only (it closes the N's narrow holes).
+    SupportTree w;
+    w.nodes = {{{0, 0, 1}, NodeKind::Chain}, {{0, 0, 0}, NodeKind::Bed}};
+    w.struts = {{0, 1}};
+    EXPECT_NEAR(estimate_slicer_cost(w, {3.0}, p).outline_mm, 5 * 4 * 3.0, 1e-9);
+}
