@@ -8,11 +8,14 @@
 #include <nlohmann/json.hpp>
 #include <fmt/format.h>
 #include <iostream>
+#include <sstream>
+#include <cmath>
 #include <optional>
 #include <tbb/global_control.h>
 
 #include "check/check.hpp"
 #include "core/errors.hpp"
+#include "edit/edited_scad.hpp"
 #include "mesh/mesh_io.hpp"
 #include "output/outputs.hpp"
 #include "output/render.hpp"
@@ -50,7 +53,7 @@ struct ParamFlags {
             {"clearance", &Params::model_clearance}};
         for (const auto& [key, value] : cfg.items()) {
             auto where = "--config " + config + ": \"" + key + "\"";
-            if (key == "preset" || key == "description") continue;
+            if (key == "preset" || key == "description" || key == "block" || key == "support-point") continue;  // edits: see edits_from()
             if (auto it = numbers.find(key); it != numbers.end()) {
                 if (!value.is_number()) throw ParameterError(where + " must be a number");
                 p.*(it->second) = value.get<double>();
@@ -96,21 +99,25 @@ struct ParamFlags {
 
     std::string config;  // a user's own preset: JSON of flag names and values
 
+    nlohmann::json load_config() const {
+        nlohmann::json cfg;
+        if (config.empty()) return cfg;
+        std::ifstream in(config);
+        if (!in) throw ParameterError("--config " + config + ": cannot read it");
+        try {
+            cfg = nlohmann::json::parse(in);
+        } catch (const std::exception& e) {
+            throw ParameterError("--config " + config + ": not valid JSON (" + std::string(e.what()) + ")");
+        }
+        if (!cfg.is_object()) throw ParameterError("--config " + config + ": expected a JSON object of parameters");
+        return cfg;
+    }
+
     // preset, then the config file, then flags: later wins.
     Params resolve() const {
         std::string base = preset;
-        nlohmann::json cfg;
-        if (!config.empty()) {
-            std::ifstream in(config);
-            if (!in) throw ParameterError("--config " + config + ": cannot read it");
-            try {
-                cfg = nlohmann::json::parse(in);
-            } catch (const std::exception& e) {
-                throw ParameterError("--config " + config + ": not valid JSON (" + std::string(e.what()) + ")");
-            }
-            if (!cfg.is_object()) throw ParameterError("--config " + config + ": expected a JSON object of parameters");
-            if (cfg.contains("preset") && !preset_given) base = cfg["preset"].get<std::string>();
-        }
+        nlohmann::json cfg = load_config();
+        if (cfg.contains("preset") && !preset_given) base = cfg["preset"].get<std::string>();
         Params p = preset_params(base);
         if (!cfg.is_null()) apply_config(cfg, p);
         auto set = [](double& dst, const std::optional<double>& v) { if (v) dst = *v; };
@@ -137,6 +144,57 @@ struct ParamFlags {
     }
 };
 
+// "a,b,c" -> numbers; ParameterError naming the flag unless there are exactly `count` of them.
+std::vector<double> numbers_in(const std::string& text, size_t count, const std::string& flag, const std::string& form) {
+    std::vector<double> v;
+    std::istringstream in(text);
+    std::string part;
+    while (std::getline(in, part, ',')) {
+        char* end = nullptr;
+        double x = std::strtod(part.c_str(), &end);
+        if (part.empty() || *end != '\0' || !std::isfinite(x)) throw ParameterError(flag + " " + text + ": expected " + form);
+        v.push_back(x);
+    }
+    if (v.size() != count) throw ParameterError(flag + " " + text + ": expected " + form);
+    return v;
+}
+
+Box3 box_of(const std::vector<double>& v) {
+    Box3 b;
+    b.add({v[0], v[1], v[2]});
+    b.add({v[3], v[4], v[5]});
+    return b;
+}
+
+// Support blockers and points: the --config file's "block" / "support-point" lists first, then
+// the flags.
+ManualEdits edits_from(const nlohmann::json& cfg, const std::string& config, const std::vector<std::string>& blocks,
+                       const std::vector<std::string>& points) {
+    ManualEdits e;
+    auto numbers = [&](const nlohmann::json& item, size_t count, const std::string& key, const std::string& form) {
+        std::vector<double> v;
+        if (item.is_array())
+            for (const auto& x : item)
+                if (x.is_number()) v.push_back(x.get<double>());
+        if (!item.is_array() || v.size() != count || item.size() != count)
+            throw ParameterError("--config " + config + ": \"" + key + "\" must hold lists of " + form);
+        return v;
+    };
+    if (cfg.contains("block"))
+        for (const auto& b : cfg["block"]) e.blockers.push_back(box_of(numbers(b, 6, "block", "[x0, y0, z0, x1, y1, z1]")));
+    if (cfg.contains("support-point"))
+        for (const auto& q : cfg["support-point"]) {
+            auto v = numbers(q, 3, "support-point", "[x, y, z]");
+            e.support_points.push_back({v[0], v[1], v[2]});
+        }
+    for (const auto& b : blocks) e.blockers.push_back(box_of(numbers_in(b, 6, "--block", "x0,y0,z0,x1,y1,z1 in mm")));
+    for (const auto& q : points) {
+        auto v = numbers_in(q, 3, "--support-point", "x,y,z in mm");
+        e.support_points.push_back({v[0], v[1], v[2]});
+    }
+    return e;
+}
+
 void print_error(const std::string& msg) { std::fprintf(stderr, "clever-support: error: %s\n", msg.c_str()); }
 
 int cmd_presets() {
@@ -161,7 +219,9 @@ int main(int argc, char** argv) {
                  "  clever-support --fit 80 --render scan.obj      # scale to 80 mm, render the SCAD too\n"
                  "  clever-support --preset replicator2-pla --orient keep part.stl\n"
                  "  clever-support check --model out/m/m.model.stl --supports out/m/m.supports.stl\n"
-                 "  clever-support render out/m/m.scad -D k=0.003\n",
+                 "  clever-support render out/m/m.scad -D k=0.003\n"
+                 "  clever-support part.scad -D width=30 --block 0,0,0,10,10,20\n"
+                 "  clever-support regrow out/m/m.scad              # after editing it\n",
                  "clever-support"};
     app.footer("Which file to print (in --out):\n"
                "  Cura:         <name>.3mf        supports marked \"print as support\"; import\n"
@@ -193,6 +253,26 @@ int main(int argc, char** argv) {
     app.add_option("--threads", threads, "Worker threads for orientation (0: all cores); output is the same for any count")
         ->check(CLI::Range(0, 1024));
     gen.add_to(app);
+    std::vector<std::string> part_defines, blocks, support_points;
+    app.add_option("-D", part_defines, "For a .scad input: OpenSCAD's -D name=value, passed when rendering the part (repeatable)")->allow_extra_args(false);
+    auto edits_group = "Manual edits (coordinates of <name>.model.stl)";
+    app.add_option("--block", blocks, "No support inside this box: x0,y0,z0,x1,y1,z1 (repeatable)")->allow_extra_args(false)->group(edits_group);
+    app.add_option("--support-point", support_points, "Also support this point of the model's underside: x,y,z (repeatable)")
+        ->allow_extra_args(false)
+        ->group(edits_group);
+
+    // regrow
+    auto* regrow = app.add_subcommand("regrow", "Grow the supports again from a generated .scad that you edited: its\n"
+                                                 "parameters, [Manual edits] and [Regrow] values; rewrites every output beside it.\n"
+                                                 "Example: clever-support regrow out/m/m.scad");
+    std::string regrow_file;
+    regrow->add_option("scad", regrow_file, "The generated .scad file")->required();
+    regrow->add_flag("--render", do_render, "Also render the .scad with OpenSCAD into <name>.union.stl");
+    regrow->add_flag("--preview", do_preview, "Also draw <name>-front/back/side.png");
+    regrow->add_flag("-q,--quiet", quiet, "Print errors only");
+    regrow->add_flag("-v,--verbose", verbose, "Print every stage as it starts");
+    regrow->add_flag("--json", as_json, "Print the report JSON on stdout instead of the summary");
+    regrow->add_option("--threads", threads, "Worker threads for orientation (0: all cores)")->check(CLI::Range(0, 1024));
 
     // check
     auto* check = app.add_subcommand("check", "Verify supports: coverage, penetration, grounding, closed solids, angles.\n"
@@ -263,18 +343,31 @@ int main(int argc, char** argv) {
             return res.ok() ? kExitOk : kExitCheckFailed;
         }
 
-        if (input.empty()) {
-            print_error("no input mesh given. Example: clever-support model.stl (see --help)");
-            return kExitUsage;
-        }
         Job job;
-        job.input = input;
-        job.scale = scale;
-        job.fit = fit;
-        job.orient = orient;
-        job.self_intersection_check = !no_si;
-        job.timings = !no_timings;
-        job.params = gen.resolve();
+        std::string dir = out_dir;
+        EditedScad edited;
+        if (regrow->parsed()) {
+            edited = read_edited_scad(regrow_file);
+            job = edited.job;
+            dir = edited.folder;
+            if (!quiet && file_sha256(job.input) != edited.input_sha256)
+                std::fprintf(stderr, "clever-support: note: %s changed since %s was written; the supports follow it as it is now\n",
+                             job.input.c_str(), regrow_file.c_str());
+        } else {
+            if (input.empty()) {
+                print_error("no input mesh given. Example: clever-support model.stl (see --help)");
+                return kExitUsage;
+            }
+            job.input = input;
+            job.defines = part_defines;
+            job.scale = scale;
+            job.fit = fit;
+            job.orient = orient;
+            job.self_intersection_check = !no_si;
+            job.timings = !no_timings;
+            job.params = gen.resolve();
+            job.edits = edits_from(gen.load_config(), gen.config, blocks, support_points);
+        }
         // Stages in order; a terminal shows how far the run is, a pipe or file gets nothing.
         const int total_stages = 9;
         int stage_no = 0;
@@ -287,10 +380,15 @@ int main(int argc, char** argv) {
         std::optional<tbb::global_control> limit;
         if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
         Result r = run_job(job, progress);
+        bool placed_edits = !job.edits.blockers.empty() || !job.edits.support_points.empty();
+        if (regrow->parsed() && placed_edits && pose_numbers(r.placement) != edited.pose)
+            r.warnings.push_back("the model is placed differently than when " + regrow_file +
+                                 " was written (the part, its scale or the orientation changed): check that the support "
+                                 "blockers and points still sit where you meant them");
         if (!quiet && !verbose && isatty(2)) std::fprintf(stderr, "\r\033[K");
         if (!quiet)
             for (const auto& w : r.warnings) std::fprintf(stderr, "clever-support: warning: %s\n", w.c_str());
-        std::string dir = out_dir.empty() ? "out/" + r.name : out_dir;
+        if (dir.empty()) dir = "out/" + r.name;
         write_outputs(dir, output_files(r, job, CS_VERSION));
         if (as_json) std::printf("%s", report_json(r, job).c_str());
         else if (!quiet) std::printf("%s", human_summary(r, dir).c_str());

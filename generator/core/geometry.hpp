@@ -2,7 +2,9 @@
 // Units are millimetres; +Z is the build direction; the bed is z = 0.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <utility>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -59,6 +61,45 @@ struct Box3 {
     Vec3 size() const { return max - min; }
     Vec3 center() const { return (min + max) * 0.5; }
 };
+
+inline bool contains(const Box3& b, const Vec3& p) {
+    return p.x >= b.min.x && p.x <= b.max.x && p.y >= b.min.y && p.y <= b.max.y && p.z >= b.min.z && p.z <= b.max.z;
+}
+
+// The box grown by r on each side horizontally and by rz vertically.
+inline Box3 grown(const Box3& b, double r, double rz) {
+    return {b.min - Vec3{r, r, rz}, b.max + Vec3{r, r, rz}};
+}
+
+// Does the segment a-b meet the (closed) box? Slab test: clip the segment's parameter range to
+// each axis' slab in turn.
+inline bool segment_meets_box(const Vec3& a, const Vec3& b, const Box3& box) {
+    double t0 = 0, t1 = 1;
+    const double from[3] = {a.x, a.y, a.z}, to[3] = {b.x, b.y, b.z};
+    const double lo[3] = {box.min.x, box.min.y, box.min.z}, hi[3] = {box.max.x, box.max.y, box.max.z};
+    for (int i = 0; i < 3; ++i) {
+        double d = to[i] - from[i];
+        if (std::abs(d) < 1e-12) {
+            if (from[i] < lo[i] || from[i] > hi[i]) return false;
+            continue;
+        }
+        double ta = (lo[i] - from[i]) / d, tb = (hi[i] - from[i]) / d;
+        if (ta > tb) std::swap(ta, tb);
+        t0 = std::max(t0, ta);
+        t1 = std::min(t1, tb);
+        if (t0 > t1) return false;
+    }
+    return true;
+}
+
+// Does a solid swept along a-b with a horizontal square cross-section (side up to `width`) meet
+// any of the boxes? Exact for the square swept at its widest: the segment against each box grown
+// by half the width horizontally (and by `rz` vertically, for what reaches past the ends).
+inline bool sweep_meets_boxes(const Vec3& a, const Vec3& b, double width, double rz, const std::vector<Box3>& boxes) {
+    for (const auto& box : boxes)
+        if (segment_meets_box(a, b, grown(box, 0.5 * width, rz))) return true;
+    return false;
+}
 
 inline Box3 bounding_box(const Mesh& m) {
     Box3 b;

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "core/geometry.hpp"
+
 namespace cs {
 
 struct Params {
@@ -39,6 +41,9 @@ struct Params {
     bool supports_on_model = true;       // false = --buildplate-only
     std::string strategy = "tree";       // tree | columns
     double model_clearance = 0.3;        // extra air kept between a strut and the model
+    // Support blockers (placed-model coordinates): no tip, strut, foot or pillar may enter them.
+    // Set from a user's edits (--block, support_blockers in a generated .scad); empty by default.
+    std::vector<Box3> keep_out;
 
     // Returns a description of the first invalid value, or "" when all are valid.
     std::string validate() const;

@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -75,6 +76,17 @@ json supports_json(const Supports& s, const Params& p) {
                                  {"seconds", cost.seconds}}}};
 }
 
+json edits_json(const ManualEdits& e, std::size_t blocked_samples) {
+    json blockers = json::array(), points = json::array();
+    for (const auto& b : e.blockers) blockers.push_back({{b.min.x, b.min.y, b.min.z}, {b.max.x, b.max.y, b.max.z}});
+    for (const auto& q : e.support_points) points.push_back({q.x, q.y, q.z});
+    return {{"support_blockers", blockers},
+            {"support_points", points},
+            {"omit_struts", e.omit_struts},
+            {"highlight_strut", e.highlight_strut},
+            {"samples_blocked", blocked_samples}};
+}
+
 void make_dirs(const std::string& dir) {
     std::string path;
     size_t i = 0;
@@ -95,12 +107,18 @@ void make_dirs(const std::string& dir) {
     }
 }
 
+std::string absolute_path(const std::string& path) {
+    std::error_code ec;
+    auto abs = std::filesystem::absolute(path, ec);
+    return ec ? path : abs.lexically_normal().string();
+}
+
 }  // namespace
 
 std::string report_json(const Result& r, const Job& job) {
     json j;
     j["tool"] = "clever-support";
-    j["input"] = {{"file", job.input},
+    j["input"] = {{"file", job.shown_input()},
                   {"sha256", r.input_sha256},
                   {"triangles", r.repair.input_triangles},
                   {"shells", r.repair.shells},
@@ -112,7 +130,9 @@ std::string report_json(const Result& r, const Job& job) {
                     {"boundary_edges", r.repair.boundary_edges},
                     {"nonmanifold_edges", r.repair.nonmanifold_edges},
                     {"self_intersecting_pairs", r.self_intersections}}}};
+    if (is_scad_input(job.input)) j["input"]["openscad_defines"] = job.defines;
     j["parameters"] = params_json(job.params);
+    if (!job.edits.empty() || job.edits.highlight_strut >= 0) j["edits"] = edits_json(job.edits, r.blocked_samples);
     const auto& pl = r.placement;
     json rot = json::array();
     for (const auto& row : r.orientation.rotation.m) rot.push_back({row[0], row[1], row[2]});
@@ -178,8 +198,9 @@ std::vector<OutputFile> output_files(const Result& r, const Job& job, const std:
                      }});
     files.push_back({r.name + ".report.json", [&r, &job] { return report_json(r, job); }});
     files.push_back({r.name + ".scad", [&r, &job, version] {
-                         ScadMeta meta{version, job.input, r.input_sha256, r.name + ".model.stl"};
-                         return emit_scad(r.supports.sized, job.params, meta);
+                         ScadMeta meta{version, r.input_sha256, absolute_path(job.input), r.name + ".model.stl",
+                                       pose_numbers(r.placement)};
+                         return emit_scad(r.supports, job, meta);
                      }});
     files.push_back({"clever_support.scad", [] { return scad_template_library(); }});
     files.push_back({"clever_support.curaprofile", [] { return encode_cura_profile("clever-support supports"); }});

@@ -6,8 +6,12 @@
 #include <iomanip>
 #include <sstream>
 
+#include <fmt/format.h>
+#include <unistd.h>
+
 #include "core/errors.hpp"
 #include "mesh/mesh_io.hpp"
+#include "output/render.hpp"
 #include "query/model_query.hpp"
 #include "tree/tree.hpp"
 
@@ -53,9 +57,12 @@ Supports build_supports(const Mesh& placed, const std::vector<Sample>& samples, 
     return build_supports(q, samples, p);
 }
 
-Supports build_supports(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p) {
+Supports build_supports(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
+                        const std::vector<int>& omit) {
     Supports s;
-    s.sized = size_struts(grow_tree(q, samples, p), p);
+    SupportTree grown = grow_tree(q, samples, p);
+    s.grown_struts = grown.struts;
+    s.sized = size_struts(prune_struts(std::move(grown), omit), p);
     s.bodies = build_bodies(s.sized, p);
     s.mesh = bodies_mesh(s.bodies, p.wall_thickness);
     s.volume = signed_volume(s.mesh);  // bodies are separate closed shells: their volumes add
@@ -63,25 +70,127 @@ Supports build_supports(const ModelQuery& q, const std::vector<Sample>& samples,
     return s;
 }
 
+SupportTree prune_struts(SupportTree t, const std::vector<int>& omit) {
+    if (omit.empty()) return t;
+    const int count = static_cast<int>(t.struts.size());
+    std::vector<std::vector<int>> in(t.nodes.size());
+    for (int e = 0; e < count; ++e) in[t.struts[e].bottom].push_back(e);
+    std::vector<char> gone(count, 0);
+    std::vector<int> stack;
+    for (int e : omit) {
+        if (e < 0 || e >= count)
+            throw ParameterError("omit_struts: " + std::to_string(e) + " is not a strut (the tree has " + std::to_string(count) +
+                                 " struts, 0 to " + std::to_string(count - 1) + ")");
+        stack.push_back(e);
+    }
+    while (!stack.empty()) {  // up the branch: every strut into the top of a gone strut goes too
+        int e = stack.back();
+        stack.pop_back();
+        if (gone[e]) continue;
+        gone[e] = 1;
+        for (int f : in[t.struts[e].top]) stack.push_back(f);
+    }
+    std::vector<char> kept(t.nodes.size(), 0), touched(t.nodes.size(), 0);
+    for (int e = 0; e < count; ++e) {
+        touched[t.struts[e].top] = touched[t.struts[e].bottom] = 1;
+        if (!gone[e]) kept[t.struts[e].top] = kept[t.struts[e].bottom] = 1;
+    }
+    for (size_t v = 0; v < t.nodes.size(); ++v) {
+        if (!touched[v] || kept[v]) continue;
+        if (t.nodes[v].kind == NodeKind::Bed) --t.stats.bed_contacts;
+        if (t.nodes[v].kind == NodeKind::ModelContact) --t.stats.model_contacts;
+        t.nodes[v].kind = NodeKind::Dropped;
+    }
+    std::vector<Strut> struts;
+    for (int e = 0; e < count; ++e)
+        if (!gone[e]) struts.push_back(t.struts[e]);
+    t.struts = std::move(struts);
+    return t;
+}
+
+// How far from the model a support point may be given: it is picked by eye from a picture or
+// from the coordinates in the .scad, and snapped onto the nearest point of the model.
+constexpr double kSupportPointSnap = 2.0;
+
+std::vector<Sample> edited_samples(const ModelQuery& model, std::vector<Sample> samples, const ManualEdits& edits,
+                                   const Params& p) {
+    const double tip = p.gap + p.tip_length, tip_width = std::max(p.tip_diameter, p.d_min);
+    auto blocked = [&](const Vec3& s) {
+        return sweep_meets_boxes(s, s - Vec3{0, 0, tip}, tip_width, 0, edits.blockers);
+    };
+    std::erase_if(samples, [&](const Sample& s) { return blocked(s.p); });
+    for (const Vec3& given : edits.support_points) {
+        auto where = fmt::format("support point [{}, {}, {}]", given.x, given.y, given.z);
+        Vec3 on = model.closest_point(given);
+        if (distance(on, given) > kSupportPointSnap)
+            throw ParameterError(fmt::format("{} is {:.1f} mm from the model; give a point on its underside, in the "
+                                             "coordinates of <name>.model.stl",
+                                             where, distance(on, given)));
+        if (model.inside(on - Vec3{0, 0, 0.01}))
+            throw ParameterError(where + " is on top of material, not on the model's underside");
+        if (blocked(on)) throw ParameterError(where + " lies in a support blocker");
+        samples.push_back({on, SampleKind::Point});
+    }
+    std::sort(samples.begin(), samples.end(), [](const Sample& a, const Sample& b) {
+        if (a.p.z != b.p.z) return a.p.z > b.p.z;
+        if (a.p.x != b.p.x) return a.p.x < b.p.x;
+        return a.p.y < b.p.y;
+    });
+    return samples;
+}
+
+bool is_scad_input(const std::string& path) { return path.size() > 5 && path.substr(path.size() - 5) == ".scad"; }
+
+Mesh load_input(const std::string& path, const std::vector<std::string>& defines) {
+    if (!is_scad_input(path)) {
+        if (!defines.empty()) throw ParameterError("-D applies to a .scad input only, not " + path);
+        return read_mesh(path);
+    }
+    if (!std::ifstream(path)) throw InputError(path + ": cannot open it. Check the path.");
+    char tmpl[] = "/tmp/clever-support-part-XXXXXX";
+    int fd = mkstemp(tmpl);
+    if (fd < 0) throw InputError(path + ": cannot make a temporary file to render it into");
+    close(fd);
+    unlink(tmpl);
+    RenderOptions o;
+    o.scad = path;
+    o.output = std::string(tmpl) + ".stl";
+    o.defines = defines;
+    auto rendered = render_scad(o);
+    if (!rendered.ok)
+        throw InputError(path + ": OpenSCAD could not render the part: " + rendered.error +
+                         (rendered.log.empty() ? "" : "\nOpenSCAD said:\n" + rendered.log));
+    try {
+        Mesh m = read_mesh(o.output);
+        unlink(o.output.c_str());
+        return m;
+    } catch (const InputError& e) {
+        unlink(o.output.c_str());
+        throw InputError(path + ": OpenSCAD rendered no usable solid (" + e.what() + ")");
+    }
+}
+
 Result run_job(const Job& job, const std::function<void(const std::string&)>& progress) {
     if (auto why = job.params.validate(); !why.empty()) throw ParameterError(why);
     if (!(job.scale != 0 && std::isfinite(job.scale)))
         throw ParameterError("--scale must be a non-zero number");
     if (job.fit && !(*job.fit > 0 && std::isfinite(*job.fit))) throw ParameterError("--fit must be a positive size in mm");
-    const Params& p = job.params;
+    Params p = job.params;
+    p.keep_out = job.edits.blockers;
+    const std::string& input = job.shown_input();
     Result r;
     Stopwatch sw(r.stages);
     r.name = stem(job.input);
 
-    Mesh raw = sw.time("load", progress, [&] { return read_mesh(job.input); });
+    Mesh raw = sw.time("load", progress, [&] { return load_input(job.input, job.defines); });
     r.input_sha256 = file_sha256(job.input);
-    Mesh repaired = sw.time("repair", progress, [&] { return repair_mesh(raw, job.input, r.repair); });
+    Mesh repaired = sw.time("repair", progress, [&] { return repair_mesh(raw, input, r.repair); });
     raw = Mesh();  // each stage's input is released once the next has its own: big scans need the room
     for (const auto& w : r.repair.warnings) r.warnings.push_back(w);
     if (job.self_intersection_check) {
         r.self_intersections = sw.time("self-intersections", progress, [&] { return count_self_intersections(repaired, 1000); });
         if (r.self_intersections)
-            r.warnings.push_back(job.input + ": " + std::to_string(r.self_intersections) +
+            r.warnings.push_back(input + ": " + std::to_string(r.self_intersections) +
                                  (r.self_intersections >= 1000 ? "+" : "") +
                                  " pairs of self-intersecting triangles; supports are still built against its surface");
     }
@@ -99,10 +208,10 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     Vec3 size = bounding_box(scaled).size();
     double largest = std::max({size.x, size.y, size.z});
     if (largest < 1.0)
-        r.warnings.push_back(job.input + ": the model is only " + std::to_string(largest) +
+        r.warnings.push_back(input + ": the model is only " + std::to_string(largest) +
                              " mm across; if its units are not millimetres use --scale (e.g. 25.4 for inches) or --fit MM");
     if (largest > 1000.0)
-        r.warnings.push_back(job.input + ": the model is " + std::to_string(largest) +
+        r.warnings.push_back(input + ": the model is " + std::to_string(largest) +
                              " mm across (over 1 m); if its units are not millimetres use --scale or --fit MM");
 
     OverhangOptions oo{p.critical_angle, p.sampling_distance, p.layer_height, touching_space(p)};
@@ -110,6 +219,7 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     // work, and the ranking of poses holds (the chosen pose's tree is then grown in full).
     Params coarse = p;
     coarse.sampling_distance = 2 * p.sampling_distance;
+    coarse.keep_out.clear();  // a user's blockers are in the chosen pose's coordinates
     OverhangOptions coarse_oo{p.critical_angle, coarse.sampling_distance, p.layer_height, touching_space(p)};
     r.orientation = sw.time("orient", progress, [&] {
         return choose_orientation(scaled, p, job.orient, [&](const Mesh& rotated) {
@@ -130,7 +240,12 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     auto query = sw.time("model index", progress, [&] { return std::make_unique<ModelQuery>(r.model); });
     // With the index, points resting on material below need no sample (as `check` judges them).
     r.samples = sw.time("overhangs", progress, [&] { return sample_overhangs(r.model, oo, query.get()); });
-    r.supports = sw.time("tree", progress, [&] { return build_supports(*query, r.samples.samples, p); });
+    if (!job.edits.empty()) {
+        size_t before = r.samples.samples.size();
+        r.samples.samples = edited_samples(*query, std::move(r.samples.samples), job.edits, p);
+        r.blocked_samples = before + job.edits.support_points.size() - r.samples.samples.size();
+    }
+    r.supports = sw.time("tree", progress, [&] { return build_supports(*query, r.samples.samples, p, job.edits.omit_struts); });
     Params columns = p;
     columns.strategy = "columns";
     r.columns = sw.time("columns baseline", progress, [&] { return build_supports(*query, r.samples.samples, columns); });
@@ -143,6 +258,13 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         r.warnings.push_back(std::to_string(r.supports.sized.strength_violations) +
                              " struts are longer than safe even at d_max; raise --d-max");
     return r;
+}
+
+std::vector<double> pose_numbers(const Placement& pl) {
+    std::vector<double> v{pl.scale};
+    for (const auto& row : pl.rotation) v.insert(v.end(), row, row + 3);
+    v.insert(v.end(), {pl.translation.x, pl.translation.y, pl.translation.z});
+    return v;
 }
 
 // SHA-256 (FIPS 180-4), for naming the input in reports and the SCAD header.

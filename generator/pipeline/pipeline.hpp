@@ -19,19 +19,36 @@ namespace cs {
 
 class ModelQuery;
 
+// A user's edits to the supports: a generated .scad's [Manual edits] section, or --block and
+// --support-point on the command line. Coordinates are the placed model's (as in <name>.model.stl).
+struct ManualEdits {
+    std::vector<Box3> blockers;        // no support solid inside; overhangs inside are not sampled
+    std::vector<Vec3> support_points;  // extra points to support, on the model's underside
+    std::vector<int> omit_struts;      // struts of the grown tree left out, with what hangs from them
+    int highlight_strut = -1;          // shown in colour in the .scad; no effect on the supports
+
+    bool empty() const { return blockers.empty() && support_points.empty() && omit_struts.empty(); }
+};
+
 struct Job {
-    std::string input;           // mesh file
+    std::string input;           // mesh file, or an OpenSCAD part (.scad) rendered first
+    std::string input_name;      // how the report and the .scad name the input (default: input)
+    std::vector<std::string> defines;  // name=value for a .scad input (OpenSCAD -D)
+    ManualEdits edits;
     double scale = 1;            // applied first
     std::optional<double> fit;   // then scale so the largest side is this (mm)
     std::string orient = "auto"; // auto | keep | RX,RY,RZ
     bool self_intersection_check = true;
     bool timings = true;          // stage times in the report (the only part that differs run to run)
     Params params;
+
+    const std::string& shown_input() const { return input_name.empty() ? input : input_name; }
 };
 
 // What one strategy built for the placed model.
 struct Supports {
     SizedTree sized;
+    std::vector<Strut> grown_struts;  // before omit_struts pruned them: the numbering edits refer to
     std::vector<Body> bodies;
     Mesh mesh;
     double volume = 0;  // sum of the bodies' volumes (mm^3)
@@ -56,6 +73,7 @@ struct Result {
     Supports columns;          // the baseline, same samples
     std::vector<Stage> stages;
     std::vector<std::string> warnings;
+    std::size_t blocked_samples = 0;  // overhang samples left unsupported by a user's blockers
 };
 
 // Throws InputError for unusable input and ParameterError for bad parameters.
@@ -64,8 +82,30 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
 
 // Builds supports for an already placed model (used by run_job and orientation scoring).
 Supports build_supports(const Mesh& placed, const std::vector<Sample>& samples, const Params& p);
-// The same, with an index of the placed model already built.
-Supports build_supports(const ModelQuery& placed, const std::vector<Sample>& samples, const Params& p);
+// The same, with an index of the placed model already built; struts in `omit` (indices into the
+// grown tree) are pruned with their branches before sizing.
+Supports build_supports(const ModelQuery& placed, const std::vector<Sample>& samples, const Params& p,
+                        const std::vector<int>& omit = {});
+
+// The tree without the struts in `omit` and everything that hangs from them (the struts above, up
+// to the leaves). Nodes keep their indices; those left without a strut become Dropped. Throws
+// ParameterError for an index that is not a strut of the tree.
+SupportTree prune_struts(SupportTree tree, const std::vector<int>& omit);
+
+// The samples a user's edits leave: none inside a blocker or whose tip would pass through one,
+// plus each support point on the model's underside near it. Throws ParameterError for a support
+// point that is not near the model's underside. Sorted as sample_overhangs sorts.
+std::vector<Sample> edited_samples(const ModelQuery& model, std::vector<Sample> samples, const ManualEdits& edits,
+                                   const Params& p);
+
+// The mesh of an input file; a .scad part is rendered by OpenSCAD first (with `defines`).
+// Throws InputError with OpenSCAD's message when the part does not render.
+Mesh load_input(const std::string& path, const std::vector<std::string>& defines);
+bool is_scad_input(const std::string& path);
+
+// The placement as 13 numbers: scale, the rotation's rows, the translation. A user's edits are
+// in the placed model's coordinates: a regrow compares these to know whether they still fit.
+std::vector<double> pose_numbers(const Placement& placement);
 
 std::string sha256_hex(std::string_view bytes);
 std::string file_sha256(const std::string& path);

@@ -104,11 +104,18 @@ SizedTree size_struts(SupportTree tree, const Params& p) {
     return s;
 }
 
+double joint_overlap(const Params& p) { return 0.5 * p.layer_height; }
+
+std::optional<Vec3> contact_tip_bottom(const Node& contact, const Params& p) {
+    Vec3 bottom = contact.contact + Vec3{0, 0, p.gap};
+    if (contact.p.z - bottom.z <= 0.01) return std::nullopt;
+    return bottom;
+}
+
 std::vector<Body> build_bodies(const SizedTree& sized, const Params& p) {
     std::vector<Body> bodies;
     const auto& nodes = sized.tree.nodes;
-    // Struts reach a little into what they join so joints overlap instead of sharing a face.
-    const double overlap = 0.5 * p.layer_height;
+    const double overlap = joint_overlap(p);
     auto profile = [&](double w0, double w1) { return std::min(w0, w1) >= min_n_width(p) ? Profile::N : Profile::Square; };
     std::vector<double> incoming_width(nodes.size(), p.d_min);
     std::vector<const Vec3*> incoming_top(nodes.size(), nullptr);
@@ -138,9 +145,8 @@ std::vector<Body> build_bodies(const SizedTree& sized, const Params& p) {
             bodies.push_back({BodyKind::Tip, Profile::Square, nd.p - Vec3{0, 0, overlap}, top, outgoing_width[v],
                               p.tip_diameter});
         } else if (nd.kind == NodeKind::ModelContact) {
-            Vec3 bottom = nd.contact + Vec3{0, 0, p.gap};
-            if (nd.p.z - bottom.z > 0.01)
-                bodies.push_back({BodyKind::ContactTip, Profile::Square, bottom, nd.p, p.tip_diameter, incoming_width[v]});
+            if (auto bottom = contact_tip_bottom(nd, p))
+                bodies.push_back({BodyKind::ContactTip, Profile::Square, *bottom, nd.p, p.tip_diameter, incoming_width[v]});
         } else if (nd.kind == NodeKind::Bed && p.feet && p.foot_height > 0 && incoming_top[v]) {
             Vec3 top = foot_top(nd.p, *incoming_top[v], p);
             double w = incoming_width[v];

@@ -14,6 +14,7 @@
 // outward-facing triangle mesh.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "core/geometry.hpp"
@@ -58,6 +59,13 @@ double min_n_width(const Params& p);
 double foot_extra(const Params& p, double strut_width, double room);
 // Where a foot under the strut from `above` down to `bed_point` ends, on the strut's axis.
 Vec3 foot_top(const Vec3& bed_point, const Vec3& above, const Params& p);
+
+// How far a strut reaches into the joint or contact below it, so joints overlap instead of
+// sharing a face.
+double joint_overlap(const Params& p);
+// Where the upside-down tip under a model-contact node ends (a gap above the model), or nothing
+// when the node is too close to the model for a tip.
+std::optional<Vec3> contact_tip_bottom(const Node& contact, const Params& p);
 
 std::vector<Body> build_bodies(const SizedTree& sized, const Params& p);
 

@@ -206,6 +206,8 @@ private:
     // none fits the print bridges the slot (too low) or the sample is given up (too tight).
     PillarFit hang_pillar(const Vec3& sample) {
         auto placed = fit_pillar(model_, sample, p_);
+        if (placed.fit == PillarFit::Fits && sweep_meets_boxes(placed.pillar.top, placed.pillar.bottom, p_.d_min, 0, p_.keep_out))
+            return PillarFit::NoRoom;  // it would stand in a user's blocker
         if (placed.fit == PillarFit::Fits) {
             t_.pillars.push_back(placed.pillar);
             ++t_.stats.pillars;
@@ -351,11 +353,22 @@ private:
     }
 
     bool clear(int from, const Vec3& to, double clearance = -1, bool onto_model = false) const {
-        return strut_is_clear(model_, t_.nodes[from].p, top_width(from, to), to, bottom_width(from, to),
+        return !enters_keep_out(from, to) &&
+               strut_is_clear(model_, t_.nodes[from].p, top_width(from, to), to, bottom_width(from, to),
                               clearance < 0 ? p_.model_clearance : clearance, onto_model);
     }
     bool clear(int from, const Candidate& c, double clearance = -1) const {
+        if (c.type == Target::Model && sweep_meets_boxes(c.point, c.contact, bottom_width(from, c.point), 0, p_.keep_out))
+            return false;  // its contact tip would stand in a blocker
         return clear(from, c.point, clearance, c.type == Target::Model);  // a steep face: no relief
+    }
+    // A user's support blockers: the strut (reaching into its joint) and, on the bed, its foot.
+    bool enters_keep_out(int from, const Vec3& to) const {
+        if (p_.keep_out.empty()) return false;
+        const double w = bottom_width(from, to), reach = 0.5 * p_.layer_height;
+        if (sweep_meets_boxes(t_.nodes[from].p, to, w, reach, p_.keep_out)) return true;
+        return to.z < 1e-6 && p_.feet &&
+               sweep_meets_boxes(to, to + Vec3{0, 0, p_.foot_height}, w + 2 * p_.foot_extra, 0, p_.keep_out);
     }
 
     void support(int id) {

@@ -1,0 +1,171 @@
+#include "edit/edited_scad.hpp"
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/errors.hpp"
+#include "edit/scad_values.hpp"
+
+namespace cs {
+namespace {
+
+class Reader {
+public:
+    Reader(ScadValues values, std::string file) : v_(std::move(values)), file_(std::move(file)) {}
+
+    const ScadValue& get(const std::string& name) const {
+        auto it = v_.find(name);
+        if (it == v_.end())
+            throw InputError(file_ + ": " + name + " is missing; it is not a .scad file clever-support wrote, or the line "
+                             "assigning " + name + " was removed");
+        return it->second;
+    }
+    [[noreturn]] void fail(int line, const std::string& what) const {
+        throw InputError(file_ + ":" + std::to_string(line) + ": " + what);
+    }
+    double number(const std::string& name) const {
+        const auto& x = get(name);
+        if (!x.value.is_number()) fail(x.line, name + " must be a number");
+        return x.value.get<double>();
+    }
+    bool boolean(const std::string& name) const {
+        const auto& x = get(name);
+        if (!x.value.is_boolean()) fail(x.line, name + " must be true or false");
+        return x.value.get<bool>();
+    }
+    std::string text(const std::string& name) const {
+        const auto& x = get(name);
+        if (!x.value.is_string()) fail(x.line, name + " must be a string in double quotes");
+        return x.value.get<std::string>();
+    }
+    const ScadValue& list(const std::string& name) const {
+        const auto& x = get(name);
+        if (!x.value.is_array()) fail(x.line, name + " must be a list [ ... ]");
+        return x;
+    }
+    int line_of(const ScadValue& x, size_t i) const { return i < x.item_lines.size() ? x.item_lines[i] : x.line; }
+
+    // Element i of list `x` as an [x, y, z] point.
+    Vec3 point(const nlohmann::json& p, int line, const std::string& what) const {
+        if (!p.is_array() || p.size() != 3 || !p[0].is_number() || !p[1].is_number() || !p[2].is_number())
+            fail(line, what + " must be a point [x, y, z]");
+        return {p[0].get<double>(), p[1].get<double>(), p[2].get<double>()};
+    }
+    int index(const nlohmann::json& x, int line, const std::string& what, int count) const {
+        if (!x.is_number() || x.get<double>() != static_cast<int>(x.get<double>()))
+            fail(line, what + " must be a whole number");
+        int i = static_cast<int>(x.get<double>());
+        if (i < 0 || i >= count)
+            fail(line, what + " " + std::to_string(i) + " is out of range (0 to " + std::to_string(count - 1) + ")");
+        return i;
+    }
+
+private:
+    ScadValues v_;
+    std::string file_;
+};
+
+Params read_params(const Reader& r) {
+    Params p;
+    p.preset = r.text("cs_preset");
+    p.k = r.number("k");
+    p.d_min = r.number("d_min");
+    p.d_max = r.number("d_max");
+    p.strength_length = r.number("strength_length");
+    p.wall_thickness = r.number("wall");
+    p.tip_length = r.number("tip_length");
+    p.tip_diameter = r.number("tip_diameter");
+    p.feet = r.boolean("feet");
+    p.foot_height = r.number("foot_height");
+    p.foot_extra = r.number("foot_extra");
+    p.critical_angle = r.number("critical_angle");
+    p.sampling_distance = r.number("sampling");
+    p.gap = r.number("gap");
+    p.model_clearance = r.number("clearance");
+    p.supports_on_model = !r.boolean("buildplate_only");
+    p.layer_height = r.number("cs_layer_height");
+    p.line_width = r.number("cs_line_width");
+    p.strategy = r.text("cs_strategy");
+    return p;
+}
+
+// The tree lists: every node index in a strut in range (the struts' count bounds the edits).
+int check_tree(const Reader& r) {
+    const auto& nodes = r.list("cs_nodes");
+    for (size_t i = 0; i < nodes.value.size(); ++i) r.point(nodes.value[i], r.line_of(nodes, i), "node " + std::to_string(i));
+    const int n = static_cast<int>(nodes.value.size());
+    const auto& struts = r.list("cs_struts");
+    for (size_t e = 0; e < struts.value.size(); ++e) {
+        const auto& s = struts.value[e];
+        int line = r.line_of(struts, e);
+        std::string what = "strut " + std::to_string(e);
+        if (!s.is_array() || s.size() != 2) r.fail(line, what + " must be [top node, bottom node]");
+        r.index(s[0], line, what + ": top node", n);
+        r.index(s[1], line, what + ": bottom node", n);
+    }
+    return static_cast<int>(struts.value.size());
+}
+
+ManualEdits read_edits(const Reader& r, int struts) {
+    ManualEdits e;
+    const auto& blockers = r.list("support_blockers");
+    for (size_t i = 0; i < blockers.value.size(); ++i) {
+        const auto& b = blockers.value[i];
+        int line = r.line_of(blockers, i);
+        std::string what = "support_blockers[" + std::to_string(i) + "]";
+        if (!b.is_array() || b.size() != 2) r.fail(line, what + " must be a box [[x0, y0, z0], [x1, y1, z1]]");
+        Vec3 a = r.point(b[0], line, what + " corner"), c = r.point(b[1], line, what + " corner");
+        Box3 box;
+        box.add(a);
+        box.add(c);
+        e.blockers.push_back(box);
+    }
+    const auto& points = r.list("support_points");
+    for (size_t i = 0; i < points.value.size(); ++i)
+        e.support_points.push_back(r.point(points.value[i], r.line_of(points, i), "support_points[" + std::to_string(i) + "]"));
+    const auto& omit = r.list("omit_struts");
+    for (size_t i = 0; i < omit.value.size(); ++i)
+        e.omit_struts.push_back(r.index(omit.value[i], r.line_of(omit, i), "omit_struts: strut", struts));
+    const auto& hl = r.get("highlight_strut");
+    if (!(hl.value.is_number() && hl.value.get<double>() == -1))
+        e.highlight_strut = r.index(hl.value, hl.line, "highlight_strut: strut", struts);
+    return e;
+}
+
+}  // namespace
+
+EditedScad read_edited_scad(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot open it. Give the .scad file clever-support wrote.");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    Reader r(parse_scad_values(text, path), path);
+
+    EditedScad out;
+    Job& job = out.job;
+    job.input = r.text("cs_input_path");
+    job.input_name = r.text("cs_input");
+    const auto& defines = r.list("cs_defines");
+    for (size_t i = 0; i < defines.value.size(); ++i) {
+        if (!defines.value[i].is_string()) r.fail(r.line_of(defines, i), "cs_defines must be a list of \"name=value\" strings");
+        job.defines.push_back(defines.value[i].get<std::string>());
+    }
+    job.orient = r.text("cs_orient");
+    job.scale = r.number("cs_scale");
+    if (double fit = r.number("cs_fit"); fit > 0) job.fit = fit;
+    job.self_intersection_check = r.boolean("cs_self_intersection_check");
+    job.timings = r.boolean("cs_timings");
+    job.params = read_params(r);
+    if (auto why = job.params.validate(); !why.empty()) throw ParameterError(path + ": " + why);
+    job.edits = read_edits(r, check_tree(r));
+    out.input_sha256 = r.text("cs_input_sha256");
+    const auto& pose = r.list("cs_pose");
+    for (size_t i = 0; i < pose.value.size(); ++i) {
+        if (!pose.value[i].is_number()) r.fail(pose.line, "cs_pose must be a list of numbers");
+        out.pose.push_back(pose.value[i].get<double>());
+    }
+    auto folder = std::filesystem::path(path).parent_path();
+    out.folder = folder.empty() ? "." : folder.string();
+    return out;
+}
+
+}  // namespace cs

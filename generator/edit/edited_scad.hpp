@@ -1,0 +1,22 @@
+// What `clever-support regrow` needs from a generated .scad that a person edited: the job that
+// made it (input, its hash and -D values, orientation, scale), every parameter (the Customizer's
+// and the [Regrow] section's), and the [Manual edits]. Every list a person may edit is checked:
+// a malformed value or an index out of range is an InputError naming the file and the line.
+#pragma once
+
+#include <string>
+
+#include "pipeline/pipeline.hpp"
+
+namespace cs {
+
+struct EditedScad {
+    Job job;                    // input, defines, orientation, scale, parameters and edits
+    std::string input_sha256;   // of the input when the file was written
+    std::string folder;         // where the file is: regrow writes the outputs there
+    std::vector<double> pose;   // the placement the edits' coordinates assume (pose_numbers)
+};
+
+EditedScad read_edited_scad(const std::string& path);
+
+}  // namespace cs

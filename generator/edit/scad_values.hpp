@@ -1,0 +1,28 @@
+// Reading back the plain values of an OpenSCAD file that clever-support wrote and a person may
+// have edited: top-level assignments `name = value;` whose value is a literal (number, true/false,
+// string, undef, or a list of those, nested). Comments are skipped; so are assignments whose value
+// refers to other names (e.g. `cs_tree_record = [cs_nodes, ...]`). Reading stops at the first
+// statement that is not an assignment (`include <...>`, a module call): the data comes before it.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace cs {
+
+struct ScadValue {
+    nlohmann::json value;         // numbers, booleans, strings, null (undef), arrays
+    int line = 0;                 // where the assignment starts
+    std::vector<int> item_lines;  // for a list: the line of each element
+};
+
+using ScadValues = std::map<std::string, ScadValue>;
+
+// Throws InputError "FILE:LINE: what is wrong" for a malformed value (an unclosed list, a missing
+// comma, an expression where a plain value belongs, a name assigned twice).
+ScadValues parse_scad_values(const std::string& text, const std::string& file);
+
+}  // namespace cs
