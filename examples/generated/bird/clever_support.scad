@@ -1,11 +1,12 @@
 // clever_support.scad: the OpenSCAD side of clever-support .
 //
-// A generated <name>.scad file holds the support tree as DATA (nodes, struts, contacts) and
-// `include`s this library, which holds the GEOMETRY as code: strut widths are computed here from
-// each strut's length and angle and the widths above it, so changing k, d_min, d_max, wall, the
-// tips or the feet in the Customizer (or with `openscad -D k=0.003`) re-sizes the whole tree
-// consistently. This file must parse on OpenSCAD 2021.01 and 2025: no recursion deeper than a
-// handful of calls, no hull(), one polyhedron per solid.
+// A generated <name>.scad file holds the support tree as DATA (nodes, struts [top, bottom], leaves,
+// contact tips, beds, pillars) and `include`s this library, which holds the GEOMETRY as code:
+// which struts carry which, the unbranched runs, and every strut's widths are derived here from
+// the data and the parameters, so changing k, d_min, d_max, wall, the tips or the feet in the
+// Customizer (or with `openscad -D k=0.003`), moving a node or adding a strut by hand re-sizes the
+// whole tree consistently. This file must parse on OpenSCAD 2021.01 and 2025: no recursion deeper
+// than a handful of calls, no hull(), one polyhedron per solid.
 //
 // Units: millimetres and degrees. +Z is up, the bed is z = 0.
 //
@@ -13,6 +14,8 @@
 //   eqn1      d = k * l * alpha, clamped to [d_min, d_max]      (paper Eqn 1; alpha from vertical)
 //   strength  d >= sqrt(run_length / (strength_length * f(alpha))), f = 1 up to 30 deg, then -15%
 //             per 20 deg: the paper's Table 1 (1 mm safe to 30 mm, 1.5 mm to 60 mm at 50 deg)
+//   run       an unbranched chain of struts through bends (one strut in, one out, not a leaf):
+//             its length is the sum, its angle the steepest
 //   node      leaf: d_min; one strut in: its lower width; several: (sum w^3)^(1/3), at least the widest
 //   strut     upper = clamp(max(node width, strength)), lower = max(upper, eqn1): never narrowing down
 //
@@ -30,22 +33,24 @@
 //   cs_foot(bed_point, toward, w, foot_height, foot_extra, room, clearance, wall)
 //       a foot on the bed, w + 2*extra wide at z = 0, narrowing to w at foot_height along the strut;
 //       extra = foot_extra unless the model is nearer than that (room: distance to the model).
-//   cs_tree(tree, k, d_min, d_max, strength_length, wall, tip_length, tip_diameter, feet,
-//           foot_height, foot_extra)
-//       the whole support from a generated tree record (see `cs_tree_record` in generated files):
-//       [nodes, kinds, node_in, struts, levels, leaves, contacts, pillars, overlap, clearance]
+//   cs_tree(tree, omit, highlight, k, d_min, d_max, strength_length, wall, tip_length, tip_diameter,
+//           feet, foot_height, foot_extra, clearance)
+//       the whole support from a generated tree record (`cs_tree_record` in generated files):
+//       [nodes, struts, leaves, contacts, beds, pillars, overlap]
 //         nodes    [[x,y,z], ...]
-//         kinds    per node: 0 leaf, 1 merge, 2 bend, 3 bed, 4 model contact
-//         node_in  per node: indices of the struts ending there
-//         struts   [[top node, bottom node, run length, run angle, level, room], ...]
-//                  room: on the bed, the distance from the foot to the model (else 0)
-//         levels   number of sizing levels (a strut's level = longest path from a leaf to its top)
-//         leaves   [[node, [x,y,z] tip top, strut leaving the node], ...]
-//         contacts [[node, [x,y,z] tip bottom on the model], ...]
+//         struts   [[top node, bottom node], ...]  (top above bottom)
+//         leaves   [[node, [x,y,z] overhang sample, tip drop], ...]: the tip ends `drop` below the sample
+//         contacts [[node, [x,y,z] tip bottom], ...]: an upside-down tip from there up to the node
+//         beds     [[node, room], ...]: nodes on the bed; room: distance from the foot to the model
 //         pillars  [[[x,y,z] top, [x,y,z] bottom], ...]  too short for a tree: d_min up to the tip
 //         overlap  how far a strut reaches into the solid below it (mm)
-//         clearance  air kept between supports and the model (mm)
+//       omit: strut indices left out with every strut above them (their branch); highlight: a
+//       strut index drawn red (-1: none).
+//   cs_show_edits(blockers, points): see-through boxes and points in the preview (not rendered).
 //   cs_strut_widths(...) returns [[upper, lower], ...] per strut, for inspection with echo().
+
+// Node kinds, as the comments in a generated file name them.
+CS_LEAF = 0; CS_MERGE = 1; CS_BEND = 2; CS_BED = 3; CS_CONTACT = 4;
 
 // ----------------------------------------------------------------------------- width rules
 
@@ -59,27 +64,98 @@ function cs_cube_sum(ws) = [for (i = 0, s = 0; i <= len(ws); s = i < len(ws) ? s
 function cs_merged(ws, d_min, d_max) = cs_clamp(max(pow(cs_cube_sum(ws), 1 / 3), max(ws)), d_min, d_max);
 function cs_angle(a, b) = atan2(norm([b[0] - a[0], b[1] - a[1]]), abs(a[2] - b[2]));
 
+// ----------------------------------------------------------------------------- the tree, derived
+
+// Fixed points, by a C-style list comprehension (no recursion): a state [x, step(x)] moves on
+// until the step changes nothing; the last step's result is the fixed point (cs_last). Each
+// derived list below settles after as many steps as the tree is deep. One step function per list
+// (function literals would do, but keep the file plain).
+function cs_last(steps, start) = len(steps) == 0 ? start : steps[len(steps) - 1];
+
+// Per node: the struts ending there, and the strut leaving it (-1: none), among `keep`.
+function cs_incoming(n, struts, keep) =
+    n == 0 ? [] : [for (v = [0 : n - 1]) [for (e = search(v, struts, 0, 1)) if (keep[e]) e]];
+function cs_outgoing(n, struts, keep) =
+    n == 0 ? [] : [for (v = [0 : n - 1]) let(f = [for (e = search(v, struts, 0, 0)) if (keep[e]) e]) len(f) ? f[0] : -1];
+
+// Omitted struts and their branches: a strut goes when it is omitted or the strut below it goes.
+function cs_gone_step(g, struts, out, direct) =
+    [for (e = [0 : len(struts) - 1]) direct[e] ? true : out[struts[e][1]] < 0 ? false : g[out[struts[e][1]]]];
+function cs_gone(n, struts, omit) =
+    len(struts) == 0 ? [] :
+    let(all = [for (e = struts) true],
+        out = cs_outgoing(n, struts, all),
+        direct = [for (e = [0 : len(struts) - 1]) len(search(e, omit)) > 0])
+    cs_last([for (s = [direct, cs_gone_step(direct, struts, out, direct)]; s[0] != s[1];
+                  s = [s[1], cs_gone_step(s[1], struts, out, direct)]) s[1]], direct);
+
+// Runs: per strut [length above it in its run (itself included), steepest above, length below,
+// steepest below]; a bend is a node with one strut in and one out that is not a leaf.
+function cs_runs_step(r, struts, lens, angles, node_in, out, bend) =
+    [for (e = [0 : len(struts) - 1])
+        let(t = struts[e][0], b = struts[e][1],
+            above = bend[t] ? r[node_in[t][0]] : [0, 0, 0, 0],
+            below = bend[b] ? r[out[b]] : [0, 0, 0, 0])
+        [lens[e] + above[0], max(angles[e], above[1]), lens[e] + below[2], max(angles[e], below[3])]];
+function cs_runs(struts, lens, angles, node_in, out, bend) =
+    len(struts) == 0 ? [] :
+    let(start = [for (e = struts) [0, 0, 0, 0]])
+    cs_last([for (s = [start, cs_runs_step(start, struts, lens, angles, node_in, out, bend)]; s[0] != s[1];
+                  s = [s[1], cs_runs_step(s[1], struts, lens, angles, node_in, out, bend)]) s[1]], start);
+
 function cs_node_width(v, node_in, w, d_min, d_max) =
     len(node_in[v]) == 0 ? d_min
     : len(node_in[v]) == 1 ? w[node_in[v][0]][1]
     : cs_merged([for (e = node_in[v]) w[e][1]], d_min, d_max);
 
-function cs_size_strut(s, nodes, node_in, w, k, d_min, d_max, strength_length) =
+// [upper, lower] width of strut e, given the widths `w` of the struts above it.
+function cs_size_strut(e, s, nodes, node_in, run, w, k, d_min, d_max, strength_length) =
     let(a = nodes[s[0]], b = nodes[s[1]],
         up = cs_clamp(max(cs_node_width(s[0], node_in, w, d_min, d_max),
-                          cs_strength_width(s[2], s[3], strength_length)), d_min, d_max))
+                          cs_strength_width(run[0], run[1], strength_length)), d_min, d_max))
     [up, max(up, cs_eqn1(k, norm(b - a), cs_angle(a, b), d_min, d_max))];
 
-// Level by level (no recursion): every strut into a node is sized before the node's own strut.
-function cs_strut_widths(nodes, node_in, struts, levels, k, d_min, d_max, strength_length) =
+// A strut's sizing level: the longest path (in struts) from a leaf down to its top node. Levels
+// settle in cheap integer steps; widths then take one pass per level, each strut sized once.
+function cs_levels_step(lv, struts, node_in) =
+    [for (e = [0 : len(struts) - 1])
+        let(into = node_in[struts[e][0]]) len(into) == 0 ? 0 : max([for (f = into) lv[f]]) + 1];
+function cs_strut_levels(struts, node_in) =
     len(struts) == 0 ? [] :
+    let(start = [for (s = struts) 0])
+    cs_last([for (s = [start, cs_levels_step(start, struts, node_in)]; s[0] != s[1];
+                  s = [s[1], cs_levels_step(s[1], struts, node_in)]) s[1]], start);
+
+// Level by level: every strut into a node is sized before the node's own strut.
+function cs_strut_widths(nodes, node_in, struts, runs, levels, k, d_min, d_max, strength_length) =
+    len(struts) == 0 ? [] :
+    let(last = max(levels))
     [for (L = 0, w = [for (s = struts) [d_min, d_min]];
-          L <= levels;
+          L <= last + 1;
           w = [for (e = [0 : len(struts) - 1])
-                  struts[e][4] == L ? cs_size_strut(struts[e], nodes, node_in, w, k, d_min, d_max, strength_length)
-                                    : w[e]],
+                  levels[e] == L ? cs_size_strut(e, struts[e], nodes, node_in, runs[e], w, k, d_min, d_max, strength_length)
+                                 : w[e]],
           L = L + 1)
-        if (L == levels) w][0];
+        if (L == last + 1) w][0];
+
+// Everything the geometry needs, derived from a tree record: [keep, node_in, out, runs, widths, room].
+function cs_derive(tree, omit, k, d_min, d_max, strength_length) =
+    let(nodes = tree[0], struts = tree[1], leaves = tree[2], beds = tree[4], n = len(nodes),
+        gone = cs_gone(n, struts, omit),
+        keep = [for (g = gone) !g],
+        node_in = cs_incoming(n, struts, keep),
+        out = cs_outgoing(n, struts, keep),
+        is_leaf = n == 0 ? [] : [for (v = [0 : n - 1]) len(search(v, leaves, 1, 0)) > 0],
+        bend = n == 0 ? [] : [for (v = [0 : n - 1]) len(node_in[v]) == 1 && out[v] >= 0 && !is_leaf[v]],
+        lens = [for (s = struts) norm(nodes[s[0]] - nodes[s[1]])],
+        angles = [for (s = struts) cs_angle(nodes[s[0]], nodes[s[1]])],
+        r = cs_runs(struts, lens, angles, node_in, out, bend),
+        runs = [for (e = [0 : max(0, len(struts) - 1)]) if (e < len(struts))
+                   [r[e][0] + r[e][2] - lens[e], max(r[e][1], r[e][3])]],
+        w = cs_strut_widths(nodes, node_in, struts, runs, cs_strut_levels(struts, node_in), k, d_min, d_max,
+                            strength_length),
+        room = n == 0 ? [] : [for (v = [0 : n - 1]) let(f = search(v, beds, 1, 0)) len(f) ? beds[f[0]][1] : -1])
+    [keep, node_in, out, runs, w, room];
 
 // ----------------------------------------------------------------------------- solids
 
@@ -150,26 +226,38 @@ module cs_foot(bed_point, toward, w, foot_height, foot_extra, room, clearance, w
     if (e > 0) cs_prism(bed_point, cs_foot_top(bed_point, toward, foot_height), w + 2 * e, w, false, wall);
 }
 
-module cs_tree(tree, k, d_min, d_max, strength_length, wall, tip_length, tip_diameter, feet, foot_height,
-               foot_extra) {
-    nodes = tree[0]; kinds = tree[1]; node_in = tree[2]; struts = tree[3]; levels = tree[4];
-    leaves = tree[5]; contacts = tree[6]; pillars = tree[7]; overlap = tree[8]; clearance = tree[9];
-    w = cs_strut_widths(nodes, node_in, struts, levels, k, d_min, d_max, strength_length);
-    for (e = [0 : max(0, len(struts) - 1)]) if (e < len(struts)) {
+module cs_tree(tree, omit, highlight, k, d_min, d_max, strength_length, wall, tip_length, tip_diameter, feet,
+               foot_height, foot_extra, clearance) {
+    nodes = tree[0]; struts = tree[1]; leaves = tree[2]; contacts = tree[3]; pillars = tree[5]; overlap = tree[6];
+    derived = cs_derive(tree, omit, k, d_min, d_max, strength_length);
+    keep = derived[0]; node_in = derived[1]; out = derived[2]; w = derived[4]; room = derived[5];
+    for (e = [0 : max(0, len(struts) - 1)]) if (e < len(struts) && keep[e]) {
         a = nodes[struts[e][0]];
         b0 = nodes[struts[e][1]];
-        on_bed = kinds[struts[e][1]] == 3;
-        has_foot = on_bed && feet && foot_height > 0 && cs_foot_extra(foot_extra, w[e][1], struts[e][5], clearance) > 0;
+        on_bed = room[struts[e][1]] >= 0;
+        has_foot = on_bed && feet && foot_height > 0 && cs_foot_extra(foot_extra, w[e][1], room[struts[e][1]], clearance) > 0;
         down = (b0 - a) / norm(b0 - a);
         // Onto a joint: reach `overlap` into it; onto a foot: stop just inside the foot's top.
         b = !on_bed ? b0 + down * overlap : has_foot ? cs_foot_top(b0, a, foot_height) + down * overlap : b0;
-        cs_strut(a, b, w[e][0], w[e][1], wall, 3 * wall);
-        if (has_foot) cs_foot(b0, a, w[e][1], foot_height, foot_extra, struts[e][5], clearance, wall);
+        color(e == highlight ? "red" : "darkorange") {
+            cs_strut(a, b, w[e][0], w[e][1], wall, 3 * wall);
+            if (has_foot) cs_foot(b0, a, w[e][1], foot_height, foot_extra, room[struts[e][1]], clearance, wall);
+        }
     }
-    for (l = leaves) cs_tip(nodes[l[0]] - [0, 0, overlap], l[1], w[l[2]][0], tip_diameter, tip_length, wall);
-    for (c = contacts) {
-        v = c[0];
-        cs_contact_tip(c[1], nodes[v], tip_diameter, w[node_in[v][0]][1], tip_length, wall);
+    color("darkorange") {
+        for (l = leaves) if (out[l[0]] >= 0)
+            cs_tip(nodes[l[0]] - [0, 0, overlap], l[1] - [0, 0, l[2]], w[out[l[0]]][0], tip_diameter, tip_length, wall);
+        for (c = contacts) if (len(node_in[c[0]]) > 0)
+            cs_contact_tip(c[1], nodes[c[0]], tip_diameter, w[node_in[c[0]][0]][1], tip_length, wall);
+        for (p = pillars) cs_prism(p[1], p[0], d_min, tip_diameter, false, wall);
     }
-    for (p = pillars) cs_prism(p[1], p[0], d_min, tip_diameter, false, wall);
+}
+
+// A user's support blockers (see-through blue) and support points (red) in the preview only:
+// never part of a rendered solid.
+module cs_show_edits(blockers, points) {
+    if ($preview) {
+        for (b = blockers) color([0.2, 0.4, 1, 0.3]) translate(b[0]) cube(b[1] - b[0]);
+        for (q = points) color("red") translate(q) sphere(r = 0.6, $fn = 16);
+    }
 }
