@@ -153,13 +153,7 @@ void flag(CheckResult& r, std::string what, const Vec3& at) {
     if (r.flagged.size() < kMaxFlags) r.flagged.push_back({std::move(what), at});
 }
 
-std::string where(const Vec3& p) {
-    char b[96];
-    std::snprintf(b, sizeof b, "(%.2f, %.2f, %.2f)", p.x, p.y, p.z);
-    return b;
-}
-
-std::string solid_name(const Shell& s) { return "solid from " + where(s.bottom) + " to " + where(s.top); }
+std::string solid_name(const Shell& s) { return "solid from " + format_place(s.bottom) + " to " + format_place(s.top); }
 
 void check_shape(const Shell& s, const Params& p, const CheckOptions& o, CheckResult& r) {
     if (!is_closed_and_consistent(s.mesh)) {
@@ -257,7 +251,7 @@ void check_penetration(const ModelQuery& q, const Shell& s, const Tolerances& t,
         ++r.penetrating_bodies;
         char b[64];
         std::snprintf(b, sizeof b, " reaches %.2f mm too deep into the model at ", probe.worst_excess);
-        flag(r, solid_name(s) + b + where(probe.worst_at), probe.worst_at);
+        flag(r, solid_name(s) + b + format_place(probe.worst_at), probe.worst_at);
     }
 }
 
@@ -268,7 +262,7 @@ void check_air_gap(const Shell& s, const Tolerances& t, CheckResult& r) {
         ++r.fused_contacts;
         char b[96];
         std::snprintf(b, sizeof b, " is fused to the model: air gap %.2f mm (at least %.2f needed) at ", s.top_gap, t.gap_min);
-        flag(r, "top of " + solid_name(s) + b + where(s.gap_at), s.top);
+        flag(r, "top of " + solid_name(s) + b + format_place(s.gap_at), s.top);
     }
 }
 

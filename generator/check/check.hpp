@@ -97,6 +97,9 @@ struct CheckResult {
 // distance the supports were made for (the user's settings, not the generator's decisions).
 CheckResult check_supports(const Mesh& model, const Mesh& supports, const Params& p, const CheckOptions& o);
 
+// A place as every check message prints it: "(x, y, z)" to two decimals (mm).
+std::string format_place(const Vec3& p);
+
 // Splits a mesh into its shells: faces connected across edges shared by exactly two faces, after
 // welding identical vertices (bodies that touch at a vertex or a whole ring stay apart).
 std::vector<Mesh> split_shells(const Mesh& m);

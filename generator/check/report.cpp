@@ -10,11 +10,6 @@ namespace {
 
 const char* mark(bool ok) { return ok ? "ok  " : "FAIL"; }
 
-std::string at(const Vec3& p) {
-    char b[96];
-    std::snprintf(b, sizeof b, "(%.2f, %.2f, %.2f)", p.x, p.y, p.z);
-    return b;
-}
 
 std::string mm(double v) {
     char b[32];
@@ -26,17 +21,23 @@ nlohmann::ordered_json xyz(const Vec3& p) { return {p.x, p.y, p.z}; }
 
 }  // namespace
 
+std::string format_place(const Vec3& p) {
+    char b[96];
+    std::snprintf(b, sizeof b, "(%.2f, %.2f, %.2f)", p.x, p.y, p.z);
+    return b;
+}
+
 std::string CheckResult::summary() const {
     std::ostringstream s;
     s << mark(coverage_ok()) << " coverage     " << covered << " of " << (overhang_points - exempt)
       << " overhang points have a contact within " << mm(reach) << " mm (" << face_points << " on faces, "
       << ridge_points << " on ridges, " << lowest_points << " lowest points; " << exempt
       << " rest on what is below; " << contacts << " contacts)\n";
-    s << "       largest gap to a contact " << mm(largest_gap) << " mm at " << at(largest_gap_at) << "; "
+    s << "       largest gap to a contact " << mm(largest_gap) << " mm at " << format_place(largest_gap_at) << "; "
       << mm(uncovered_area) << " mm2 of overhang beyond reach\n";
-    for (const auto& u : uncovered) s << "       uncovered at " << at(u) << "\n";
+    for (const auto& u : uncovered) s << "       uncovered at " << format_place(u) << "\n";
     s << mark(gap_ok()) << " air gap      " << fused_contacts << " contacts closer to the model than the gap";
-    if (min_air_gap < INFINITY) s << " (smallest " << mm(min_air_gap) << " mm at " << at(min_air_gap_at) << ")";
+    if (min_air_gap < INFINITY) s << " (smallest " << mm(min_air_gap) << " mm at " << format_place(min_air_gap_at) << ")";
     s << "\n";
     s << mark(penetrating_bodies == 0) << " penetration  " << penetrating_bodies
       << " solids reach into the model (deepest " << mm(max_penetration) << " mm outside contact ends)"
