@@ -63,7 +63,7 @@ struct ParamFlags {
                 else p.supports_on_model = !value.get<bool>();
             } else if (key == "strategy") {
                 if (!value.is_string()) throw ParameterError(where + " must be \"tree\" or \"columns\"");
-                p.strategy = value.get<std::string>();
+                p.strategy = parse_strategy(value.get<std::string>());
             } else {
                 throw ParameterError(where + " is not a parameter (use the flag names, e.g. \"critical-angle\")");
             }
@@ -138,7 +138,7 @@ struct ParamFlags {
         set(p.model_clearance, clearance);
         if (feet) p.feet = *feet;
         if (buildplate_only) p.supports_on_model = false;
-        if (strategy) p.strategy = *strategy;
+        if (strategy) p.strategy = parse_strategy(*strategy);
         if (auto why = p.validate(); !why.empty()) throw ParameterError(why);
         return p;
     }

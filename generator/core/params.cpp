@@ -26,7 +26,6 @@ std::string Params::validate() const {
     if (!(foot_height >= 0 && foot_height <= 20)) return bad("foot_height", foot_height, "0..20 mm");
     if (!(foot_extra >= 0 && foot_extra <= 20)) return bad("foot_extra", foot_extra, "0..20 mm");
     if (!(model_clearance >= 0 && model_clearance <= 10)) return bad("model_clearance", model_clearance, "0..10 mm");
-    if (strategy != "tree" && strategy != "columns") return "strategy must be 'tree' or 'columns', not '" + strategy + "'";
     return "";
 }
 

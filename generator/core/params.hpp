@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "core/modes.hpp"
 
 namespace cs {
 
@@ -39,7 +40,7 @@ struct Params {
 
     // Tree growth.
     bool supports_on_model = true;       // false = --buildplate-only
-    std::string strategy = "tree";       // tree | columns
+    Strategy strategy = Strategy::tree;
     double model_clearance = 0.3;        // extra air kept between a strut and the model
     // Support blockers (placed-model coordinates): no tip, strut, foot or pillar may enter them.
     // Set from a user's edits (--block, support_blockers in a generated .scad); empty by default.

@@ -85,7 +85,7 @@ Params read_params(const Reader& r) {
     p.supports_on_model = !r.boolean("buildplate_only");
     p.layer_height = r.number("cs_layer_height");
     p.line_width = r.number("cs_line_width");
-    p.strategy = r.text("cs_strategy");
+    p.strategy = parse_strategy(r.text("cs_strategy"));
     return p;
 }
 

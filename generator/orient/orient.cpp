@@ -4,9 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
-#include "core/errors.hpp"
 #include "mesh/repair.hpp"
 #include "overhang/overhang.hpp"
 
@@ -73,24 +71,18 @@ Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::str
                                const std::function<PoseSupport(const Mesh& rotated)>& support,
                                size_t evaluate_best) {
     Orientation o;
-    if (mode == "keep") {
-        o.mode = "keep";
+    const OrientRequest request = parse_orient(mode);
+    o.mode = request.mode;
+    if (request.mode == OrientMode::keep) {
         o.decided_by = "kept";
         return o;
     }
-    if (mode != "auto") {
-        std::istringstream in(mode);
-        double a[3];
-        char c1 = 0, c2 = 0;
-        if (!(in >> a[0] >> c1 >> a[1] >> c2 >> a[2]) || c1 != ',' || c2 != ',' || !in.eof() ||
-            !std::isfinite(a[0]) || !std::isfinite(a[1]) || !std::isfinite(a[2]))
-            throw ParameterError("--orient must be auto, keep or RX,RY,RZ in degrees (e.g. 90,0,0), not '" + mode + "'");
-        o.mode = "euler";
+    if (request.mode == OrientMode::euler) {
         o.decided_by = "given";
+        const auto& a = request.degrees;
         rotation_from_euler_deg(a[0], a[1], a[2], o.rotation.m);
         return o;
     }
-    o.mode = "auto";
 
     // Candidates: the input pose first (wins ties), the six axes, then hull rest positions.
     std::vector<std::pair<Vec3, std::string>> dirs{{{0, 0, -1}, "input"}};

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "core/modes.hpp"
 #include "core/params.hpp"
 
 namespace cs {
@@ -42,7 +43,7 @@ struct OrientCandidate {
 
 struct Orientation {
     Rotation rotation;
-    std::string mode;        // auto | keep | euler
+    OrientMode mode = OrientMode::automatic;
     std::string decided_by;  // "kept", "given", "overhang area", "support volume", "model contacts", "height"
     std::vector<OrientCandidate> candidates;  // ordered by overhang area
     std::size_t chosen = 0;
@@ -61,7 +62,8 @@ std::vector<HullFacet> hull_facets(const std::vector<Vec3>& points);
 // The rotation taking `down` to -Z (a minimal rotation; identity when already so).
 Rotation rotation_to_down(const Vec3& down);
 
-// Parses "auto", "keep" or "RX,RY,RZ" (degrees); throws ParameterError otherwise.
+// `mode` is an --orient value (parse_orient: "auto", "keep" or "RX,RY,RZ"); throws ParameterError
+// for anything else.
 // `support` is called for the best few candidates in auto mode (placed mesh -> what its tree needs).
 Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::string& mode,
                                const std::function<PoseSupport(const Mesh& rotated)>& support,

@@ -38,7 +38,7 @@ json params_json(const Params& p) {
             {"foot_height_mm", p.foot_height},
             {"foot_extra_mm", p.foot_extra},
             {"buildplate_only", !p.supports_on_model},
-            {"strategy", p.strategy},
+            {"strategy", to_string(p.strategy)},
             {"model_clearance_mm", p.model_clearance}};
 }
 
@@ -147,7 +147,7 @@ std::string report_json(const Result& r, const Job& job) {
         cands.push_back(cj);
     }
     j["placement"] = {{"scale", pl.scale},
-                      {"orientation", r.orientation.mode},
+                      {"orientation", to_string(r.orientation.mode)},
                       {"decided_by", r.orientation.decided_by},
                       {"rotation", rot},
                       {"translation_mm", {pl.translation.x, pl.translation.y, pl.translation.z}},
@@ -254,7 +254,7 @@ std::string human_summary(const Result& r, const std::string& dir) {
     std::string s;
     Vec3 size = bounding_box(r.model).size();
     s += fmt::format("{}: {:.1f} x {:.1f} x {:.1f} mm, orientation {} ({})\n", r.name, size.x, size.y, size.z,
-                     r.orientation.mode, r.orientation.decided_by);
+                     to_string(r.orientation.mode), r.orientation.decided_by);
     s += fmt::format("  overhangs   {:.0f} mm^2, {} samples\n", r.samples.overhang_area, r.samples.samples.size());
     s += fmt::format("  tree        {} struts, {} merges, {} on the bed, {} on the model, {} pillars\n",
                      r.supports.sized.tree.struts.size(), st.merges, st.bed_contacts, st.model_contacts, st.pillars);

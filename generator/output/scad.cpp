@@ -64,7 +64,7 @@ std::string header(const Supports& sp, const Job& job, const ScadMeta& meta) {
     s += fmt::format("// preset {}: critical angle {} deg, layer {} mm, sampling {} mm, gap {} mm, clearance {} mm, "
                      "strategy {}, {}\n",
                      p.preset, num(p.critical_angle), num(p.layer_height), num(p.sampling_distance), num(p.gap),
-                     num(p.model_clearance), p.strategy, p.supports_on_model ? "supports on model allowed" : "buildplate only");
+                     num(p.model_clearance), to_string(p.strategy), p.supports_on_model ? "supports on model allowed" : "buildplate only");
     s += fmt::format("// {} nodes, {} struts, {} tips, {} model contacts, {} bed contacts, {} pillars\n", t.nodes.size(),
                      t.struts.size(), std::count_if(t.nodes.begin(), t.nodes.end(), [](const Node& n) { return n.kind == NodeKind::Leaf; }),
                      t.stats.model_contacts, t.stats.bed_contacts, t.pillars.size());
@@ -147,7 +147,7 @@ std::string provenance(const Job& job, const ScadMeta& meta) {
         {"cs_preset", scad_string(p.preset)},
         {"cs_layer_height", scad_number(p.layer_height)},
         {"cs_line_width", scad_number(p.line_width)},
-        {"cs_strategy", scad_string(p.strategy)},
+        {"cs_strategy", scad_string(to_string(p.strategy))},
         {"cs_orient", scad_string(job.orient)},
         {"cs_scale", scad_number(job.scale)},
         {"cs_fit", job.fit ? scad_number(*job.fit) : std::string("0")},  // 0: not fitted

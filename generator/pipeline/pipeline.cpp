@@ -247,7 +247,7 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     }
     r.supports = sw.time("tree", progress, [&] { return build_supports(*query, r.samples.samples, p, job.edits.omit_struts); });
     Params columns = p;
-    columns.strategy = "columns";
+    columns.strategy = Strategy::columns;
     r.columns = sw.time("columns baseline", progress, [&] { return build_supports(*query, r.samples.samples, columns); });
     query.reset();
     if (const auto& st = r.supports.sized.tree.stats; st.dropped)

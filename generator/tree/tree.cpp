@@ -119,7 +119,7 @@ public:
     }
 
 private:
-    bool tree() const { return p_.strategy == "tree"; }
+    bool tree() const { return p_.strategy == Strategy::tree; }
 
     int add_node(const Vec3& p, NodeKind kind, const Vec3& contact, double width) {
         t_.nodes.push_back({p, kind, contact});

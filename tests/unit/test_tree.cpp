@@ -305,7 +305,7 @@ TEST(GrowTree, IsDeterministic) {
 
 TEST(GrowTree, TreeIsShorterThanColumns) {
     Params tree, columns;
-    columns.strategy = "columns";
+    columns.strategy = Strategy::columns;
     for (const Mesh& m : {cs::test::t_shape(), cs::test::bridge_shape()}) {
         auto t = grow(m, tree), c = grow(m, columns);
         EXPECT_GT(c->tree.total_length(), 0);
@@ -403,7 +403,7 @@ TEST(GrowTree, BranchesJoinWhenTheJoinLeavesFewerIslands) {
 
 TEST(GrowTree, TreeCostsTheSlicerLessThanColumns) {
     Params tree, columns;
-    columns.strategy = "columns";
+    columns.strategy = Strategy::columns;
     for (const Mesh& m : {cs::test::t_shape(), cs::test::bridge_shape()}) {
         auto t = grow(m, tree), c = grow(m, columns);
         auto ct = estimate_slicer_cost(t->tree, all_d_min(t->tree, tree), tree);
