@@ -3,6 +3,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <exception>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -197,6 +198,170 @@ ManualEdits edits_from(const nlohmann::json& cfg, const std::string& config, con
 
 void print_error(const std::string& msg) { std::fprintf(stderr, "clever-support: error: %s\n", msg.c_str()); }
 
+// The one place where an error becomes a message on stderr and an exit code (README "Exit codes").
+int exit_code_for(const std::exception_ptr& error) {
+    try {
+        std::rethrow_exception(error);
+    } catch (const CLI::ParseError& e) {
+        print_error(std::string(e.what()) + ". Run `clever-support --help` for usage.");
+        return kExitUsage;
+    } catch (const ParameterError& e) {
+        print_error(std::string(e.what()) + ".");
+        return kExitUsage;
+    } catch (const UsageError& e) {
+        print_error(e.what());
+        return kExitUsage;
+    } catch (const InputError& e) {
+        print_error(e.what());
+        return kExitBadInput;
+    } catch (const ExternalToolError& e) {
+        print_error(e.what());
+        if (!e.log.empty()) std::fprintf(stderr, "%s", e.log.c_str());
+        return kExitRenderFailed;
+    } catch (const OutputError& e) {
+        print_error(e.what());
+        return kExitOutputFailed;
+    } catch (const std::bad_alloc&) {
+        print_error("out of memory. Try a larger --sampling or a smaller model.");
+        return kExitInternal;
+    } catch (const std::exception& e) {
+        print_error(std::string("internal error: ") + e.what() + ". Please report this with the input file.");
+        return kExitInternal;
+    }
+}
+
+// How a run that grows supports (generate, regrow) talks and what it does after writing.
+struct RunOptions {
+    bool render = false, preview = false, quiet = false, verbose = false, as_json = false;
+    int threads = 0;  // 0: all cores
+};
+
+// The default command's own inputs (the parameters are in `params`).
+struct GenerateArgs {
+    std::string input, out_dir, orient = "auto";
+    double scale = 1;
+    std::optional<double> fit;
+    bool no_self_intersection_check = false, no_timings = false;
+    std::vector<std::string> part_defines, blocks, support_points;
+    ParamFlags params;
+};
+
+struct CheckArgs {
+    std::string model, supports;
+    CheckOptions options;
+    bool as_json = false;
+    ParamFlags params;
+};
+
+// Everything the command line can say; each subcommand's pointer tells whether it was chosen.
+struct CommandLine {
+    GenerateArgs generate;
+    RunOptions run;
+    std::string regrow_file;
+    CheckArgs check;
+    RenderOptions render;
+    CLI::App *regrow_cmd = nullptr, *check_cmd = nullptr, *render_cmd = nullptr, *presets_cmd = nullptr;
+};
+
+void add_run_flags(CLI::App& app, RunOptions& o, bool regrow) {
+    app.add_flag("--render", o.render,
+                 regrow ? "Also render the .scad with OpenSCAD into <name>.union.stl"
+                        : "Also render <name>.scad with OpenSCAD into <name>.union.stl");
+    app.add_flag("--preview", o.preview,
+                 regrow ? "Also draw <name>-front/back/side.png"
+                        : "Also draw <name>-front/back/side.png (model grey, supports orange)");
+}
+
+void add_talk_flags(CLI::App& app, RunOptions& o, bool regrow) {
+    app.add_flag("-q,--quiet", o.quiet, "Print errors only");
+    app.add_flag("-v,--verbose", o.verbose, "Print every stage as it starts");
+    app.add_flag("--json", o.as_json, "Print the report JSON on stdout instead of the summary");
+    app.add_option("--threads", o.threads,
+                   regrow ? "Worker threads for orientation (0: all cores)"
+                          : "Worker threads for orientation (0: all cores); output is the same for any count")
+        ->check(CLI::Range(0, 1024));
+}
+
+void add_generate(CLI::App& app, GenerateArgs& g, RunOptions& o) {
+    app.add_option("input", g.input, "Mesh file: .stl (ASCII or binary), .obj, .off, .ply");
+    app.add_option("--out", g.out_dir, "Output directory (default out/<name>)");
+    app.add_option("--scale", g.scale, "Scale factor applied first (e.g. 25.4 for inches)");
+    app.add_option("--fit", g.fit, "Then scale so the largest side is this many mm");
+    app.add_option("--orient", g.orient, "auto (least support), keep, or RX,RY,RZ in degrees")->capture_default_str();
+    add_run_flags(app, o, false);
+    app.add_flag("--no-self-intersection-check", g.no_self_intersection_check, "Skip counting self-intersections of the input");
+    app.add_flag("--no-timings", g.no_timings, "Leave stage times out of the report: byte-identical reports run to run");
+    add_talk_flags(app, o, false);
+    g.params.add_to(app);
+    app.add_option("-D", g.part_defines, "For a .scad input: OpenSCAD's -D name=value, passed when rendering the part (repeatable)")
+        ->allow_extra_args(false);
+    auto edits_group = "Manual edits (coordinates of <name>.model.stl)";
+    app.add_option("--block", g.blocks, "No support inside this box: x0,y0,z0,x1,y1,z1 (repeatable)")
+        ->allow_extra_args(false)
+        ->group(edits_group);
+    app.add_option("--support-point", g.support_points, "Also support this point of the model's underside: x,y,z (repeatable)")
+        ->allow_extra_args(false)
+        ->group(edits_group);
+}
+
+CLI::App* add_regrow(CLI::App& app, std::string& file, RunOptions& o) {
+    auto* cmd = app.add_subcommand("regrow", "Grow the supports again from a generated .scad that you edited: its\n"
+                                             "parameters, [Manual edits] and [Regrow] values; rewrites every output beside it.\n"
+                                             "Example: clever-support regrow out/m/m.scad");
+    cmd->add_option("scad", file, "The generated .scad file")->required();
+    add_run_flags(*cmd, o, true);
+    add_talk_flags(*cmd, o, true);
+    return cmd;
+}
+
+CLI::App* add_check(CLI::App& app, CheckArgs& c) {
+    auto* cmd = app.add_subcommand("check", "Verify supports: coverage, penetration, grounding, closed solids, angles.\n"
+                                            "Example: clever-support check --model m.model.stl --supports m.supports.stl");
+    cmd->add_option("--model", c.model, "Placed model STL")->required();
+    cmd->add_option("--supports", c.supports, "Support STL (separate closed solids)")->required();
+    cmd->add_option("--reach", c.options.reach,
+                    "Max distance from an overhang point to a contact, mm (default: 0.71 x sampling, the "
+                    "largest gap a square lattice of contacts leaves)");
+    cmd->add_option("--penetration-tolerance", c.options.penetration_tolerance,
+                    "How deep a solid may reach into the model outside its contact ends, mm (default: half the gap)");
+    cmd->add_option("--gap-tolerance", c.options.gap_tolerance, "How far an air gap may fall short of --gap, mm")
+        ->capture_default_str();
+    cmd->add_flag("--json", c.as_json, "Print results as JSON");
+    c.params.add_to(*cmd);
+    return cmd;
+}
+
+CLI::App* add_render(CLI::App& app, RenderOptions& r) {
+    auto* cmd = app.add_subcommand("render", "Render a generated .scad with OpenSCAD into <name>.union.stl.\n"
+                                             "Example: clever-support render out/m/m.scad -D k=0.003");
+    cmd->add_option("scad", r.scad, "Generated .scad file")->required();
+    cmd->add_option("-o,--output", r.output, "Output file (default <name>.union.stl)");
+    cmd->add_option("-D", r.defines, "Override a parameter: name=value (repeatable)");
+    cmd->add_option("--openscad", r.openscad, "OpenSCAD command to use");
+    cmd->add_option("--export-format", r.format, "binstl, asciistl or png")->capture_default_str();
+    return cmd;
+}
+
+void describe_app(CLI::App& app) {
+    app.footer("Which file to print (in --out):\n"
+               "  Cura:         <name>.3mf        supports marked \"print as support\"; import\n"
+               "                                  clever_support.curaprofile once (README, \"Printing in Cura\")\n"
+               "  PrusaSlicer:  <name>.prusa.3mf  supports as a part with support-like settings\n"
+               "  Other:        <name>.supported.stl with the slicer's own supports off");
+    app.set_version_flag("--version", CS_VERSION);
+    app.require_subcommand(0, 1);
+}
+
+void add_commands(CLI::App& app, CommandLine& cl) {
+    describe_app(app);
+    add_generate(app, cl.generate, cl.run);
+    cl.regrow_cmd = add_regrow(app, cl.regrow_file, cl.run);
+    cl.check_cmd = add_check(app, cl.check);
+    cl.render_cmd = add_render(app, cl.render);
+    cl.presets_cmd = app.add_subcommand("presets", "List the printer presets, their values and where those come from.\n"
+                                                   "Your own: --config my.json with {\"preset\": \"generic-0.4\", \"sampling\": 2}");
+}
+
 int cmd_presets() {
     for (const auto& pr : presets()) {
         const Params& p = pr.params;
@@ -208,6 +373,104 @@ int cmd_presets() {
         std::printf("%-16s sources: %s\n\n", "", pr.sources.c_str());
     }
     return kExitOk;
+}
+
+int cmd_render(const RenderOptions& o) {
+    auto r = render_scad(o);
+    std::printf("rendered %s in %.1f s\n", r.output.c_str(), r.seconds);
+    return kExitOk;
+}
+
+int cmd_check(const CheckArgs& c) {
+    Params p = c.params.resolve();
+    RepairReport rr;
+    Mesh model = repair_mesh(read_mesh(c.model), c.model, rr);
+    Mesh sup = read_mesh(c.supports, /*allow_empty=*/true);
+    auto res = check_supports(model, sup, p, c.options);
+    std::printf("%s", c.as_json ? (res.json() + "\n").c_str() : res.summary().c_str());
+    return res.ok() ? kExitOk : kExitCheckFailed;
+}
+
+// run_job with the stages shown as they start: every one with -v, a one-line progress on a
+// terminal, nothing when stderr is a pipe or a file.
+Result run_showing_progress(const Job& job, const RunOptions& o) {
+    const int total_stages = 9;
+    int stage_no = 0;
+    auto progress = [&](const std::string& stage) {
+        int pct = 100 * stage_no++ / total_stages;
+        if (o.verbose) std::fprintf(stderr, "  [%3d%%] %s...\n", pct, stage.c_str());
+        else if (!o.quiet && isatty(2)) std::fprintf(stderr, "\r\033[K  [%3d%%] %s...", pct, stage.c_str());
+    };
+    // Scoped to the run: the library itself keeps no global state.
+    std::optional<tbb::global_control> limit;
+    if (o.threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(o.threads));
+    Result r = run_job(job, progress);
+    if (!o.quiet && !o.verbose && isatty(2)) std::fprintf(stderr, "\r\033[K");
+    return r;
+}
+
+// The requested extras after the outputs are written: the rendered union and the pictures.
+void render_extras(const std::string& stem, const RunOptions& o) {
+    if (o.render) {
+        RenderOptions ro;
+        ro.scad = stem + ".scad";
+        auto rr = render_scad(ro);
+        if (!o.quiet && !o.as_json) std::printf("  rendered    %s in %.1f s\n", rr.output.c_str(), rr.seconds);
+    }
+    if (o.preview) {
+        render_previews(stem + ".scad", stem);
+        if (!o.quiet && !o.as_json) std::printf("  pictures    %s-front.png, -back.png, -side.png\n", stem.c_str());
+    }
+}
+
+// Warnings, the outputs (into `dir`, default out/<name>), the report or summary, then the extras.
+int finish_run(const Result& r, const Job& job, std::string dir, const RunOptions& o) {
+    if (!o.quiet)
+        for (const auto& w : r.warnings) std::fprintf(stderr, "clever-support: warning: %s\n", w.c_str());
+    if (dir.empty()) dir = "out/" + r.name;
+    write_outputs(dir, output_files(r, job, CS_VERSION));
+    if (o.as_json) std::printf("%s", report_json(r, job).c_str());
+    else if (!o.quiet) std::printf("%s", human_summary(r, dir).c_str());
+    render_extras(dir + "/" + r.name, o);
+    return kExitOk;
+}
+
+int cmd_generate(const GenerateArgs& g, const RunOptions& o) {
+    if (g.input.empty()) throw UsageError("no input mesh given. Example: clever-support model.stl (see --help)");
+    Job job;
+    job.input = g.input;
+    job.defines = g.part_defines;
+    job.scale = g.scale;
+    job.fit = g.fit;
+    job.orient = g.orient;
+    job.self_intersection_check = !g.no_self_intersection_check;
+    job.timings = !g.no_timings;
+    job.params = g.params.resolve();
+    job.edits = edits_from(g.params.load_config(), g.params.config, g.blocks, g.support_points);
+    return finish_run(run_showing_progress(job, o), job, g.out_dir, o);
+}
+
+int cmd_regrow(const std::string& file, const RunOptions& o) {
+    EditedScad edited = read_edited_scad(file);
+    const Job& job = edited.job;
+    if (!o.quiet && file_sha256(job.input) != edited.input_sha256)
+        std::fprintf(stderr, "clever-support: note: %s changed since %s was written; the supports follow it as it is now\n",
+                     job.input.c_str(), file.c_str());
+    Result r = run_showing_progress(job, o);
+    bool placed_edits = !job.edits.blockers.empty() || !job.edits.support_points.empty();
+    if (placed_edits && pose_numbers(r.placement) != edited.pose)
+        r.warnings.push_back("the model is placed differently than when " + file +
+                             " was written (the part, its scale or the orientation changed): check that the support "
+                             "blockers and points still sit where you meant them");
+    return finish_run(r, job, edited.folder, o);
+}
+
+int run_command(const CommandLine& cl) {
+    if (cl.presets_cmd->parsed()) return cmd_presets();
+    if (cl.render_cmd->parsed()) return cmd_render(cl.render);
+    if (cl.check_cmd->parsed()) return cmd_check(cl.check);
+    if (cl.regrow_cmd->parsed()) return cmd_regrow(cl.regrow_file, cl.run);
+    return cmd_generate(cl.generate, cl.run);
 }
 
 }  // namespace
@@ -223,209 +486,14 @@ int main(int argc, char** argv) {
                  "  clever-support part.scad -D width=30 --block 0,0,0,10,10,20\n"
                  "  clever-support regrow out/m/m.scad              # after editing it\n",
                  "clever-support"};
-    app.footer("Which file to print (in --out):\n"
-               "  Cura:         <name>.3mf        supports marked \"print as support\"; import\n"
-               "                                  clever_support.curaprofile once (README, \"Printing in Cura\")\n"
-               "  PrusaSlicer:  <name>.prusa.3mf  supports as a part with support-like settings\n"
-               "  Other:        <name>.supported.stl with the slicer's own supports off");
-    app.set_version_flag("--version", CS_VERSION);
-    app.require_subcommand(0, 1);
-
-    // generate (the main command)
-    std::string input, out_dir, orient = "auto";
-    double scale = 1;
-    std::optional<double> fit;
-    bool do_render = false, do_preview = false, quiet = false, verbose = false, as_json = false, no_si = false, no_timings = false;
-    ParamFlags gen;
-    app.add_option("input", input, "Mesh file: .stl (ASCII or binary), .obj, .off, .ply");
-    app.add_option("--out", out_dir, "Output directory (default out/<name>)");
-    app.add_option("--scale", scale, "Scale factor applied first (e.g. 25.4 for inches)");
-    app.add_option("--fit", fit, "Then scale so the largest side is this many mm");
-    app.add_option("--orient", orient, "auto (least support), keep, or RX,RY,RZ in degrees")->capture_default_str();
-    app.add_flag("--render", do_render, "Also render <name>.scad with OpenSCAD into <name>.union.stl");
-    app.add_flag("--preview", do_preview, "Also draw <name>-front/back/side.png (model grey, supports orange)");
-    app.add_flag("--no-self-intersection-check", no_si, "Skip counting self-intersections of the input");
-    app.add_flag("--no-timings", no_timings, "Leave stage times out of the report: byte-identical reports run to run");
-    app.add_flag("-q,--quiet", quiet, "Print errors only");
-    app.add_flag("-v,--verbose", verbose, "Print every stage as it starts");
-    app.add_flag("--json", as_json, "Print the report JSON on stdout instead of the summary");
-    int threads = 0;
-    app.add_option("--threads", threads, "Worker threads for orientation (0: all cores); output is the same for any count")
-        ->check(CLI::Range(0, 1024));
-    gen.add_to(app);
-    std::vector<std::string> part_defines, blocks, support_points;
-    app.add_option("-D", part_defines, "For a .scad input: OpenSCAD's -D name=value, passed when rendering the part (repeatable)")->allow_extra_args(false);
-    auto edits_group = "Manual edits (coordinates of <name>.model.stl)";
-    app.add_option("--block", blocks, "No support inside this box: x0,y0,z0,x1,y1,z1 (repeatable)")->allow_extra_args(false)->group(edits_group);
-    app.add_option("--support-point", support_points, "Also support this point of the model's underside: x,y,z (repeatable)")
-        ->allow_extra_args(false)
-        ->group(edits_group);
-
-    // regrow
-    auto* regrow = app.add_subcommand("regrow", "Grow the supports again from a generated .scad that you edited: its\n"
-                                                 "parameters, [Manual edits] and [Regrow] values; rewrites every output beside it.\n"
-                                                 "Example: clever-support regrow out/m/m.scad");
-    std::string regrow_file;
-    regrow->add_option("scad", regrow_file, "The generated .scad file")->required();
-    regrow->add_flag("--render", do_render, "Also render the .scad with OpenSCAD into <name>.union.stl");
-    regrow->add_flag("--preview", do_preview, "Also draw <name>-front/back/side.png");
-    regrow->add_flag("-q,--quiet", quiet, "Print errors only");
-    regrow->add_flag("-v,--verbose", verbose, "Print every stage as it starts");
-    regrow->add_flag("--json", as_json, "Print the report JSON on stdout instead of the summary");
-    regrow->add_option("--threads", threads, "Worker threads for orientation (0: all cores)")->check(CLI::Range(0, 1024));
-
-    // check
-    auto* check = app.add_subcommand("check", "Verify supports: coverage, penetration, grounding, closed solids, angles.\n"
-                                               "Example: clever-support check --model m.model.stl --supports m.supports.stl");
-    std::string check_model, check_supports_path;
-    CheckOptions copt;
-    bool check_json = false;
-    ParamFlags chk;
-    check->add_option("--model", check_model, "Placed model STL")->required();
-    check->add_option("--supports", check_supports_path, "Support STL (separate closed solids)")->required();
-    check->add_option("--reach", copt.reach,
-                      "Max distance from an overhang point to a contact, mm (default: 0.71 x sampling, the "
-                      "largest gap a square lattice of contacts leaves)");
-    check->add_option("--penetration-tolerance", copt.penetration_tolerance,
-                      "How deep a solid may reach into the model outside its contact ends, mm (default: half the gap)");
-    check->add_option("--gap-tolerance", copt.gap_tolerance, "How far an air gap may fall short of --gap, mm")
-        ->capture_default_str();
-    check->add_flag("--json", check_json, "Print results as JSON");
-    chk.add_to(*check);
-
-    // render
-    auto* render = app.add_subcommand("render", "Render a generated .scad with OpenSCAD into <name>.union.stl.\n"
-                                                 "Example: clever-support render out/m/m.scad -D k=0.003");
-    RenderOptions ropt;
-    render->add_option("scad", ropt.scad, "Generated .scad file")->required();
-    render->add_option("-o,--output", ropt.output, "Output file (default <name>.union.stl)");
-    render->add_option("-D", ropt.defines, "Override a parameter: name=value (repeatable)");
-    render->add_option("--openscad", ropt.openscad, "OpenSCAD command to use");
-    render->add_option("--export-format", ropt.format, "binstl, asciistl or png")->capture_default_str();
-
-    auto* list = app.add_subcommand("presets", "List the printer presets, their values and where those come from.\n"
-                                               "Your own: --config my.json with {\"preset\": \"generic-0.4\", \"sampling\": 2}");
-
+    CommandLine cl;
+    add_commands(app, cl);
     try {
         app.parse(argc, argv);
-    } catch (const CLI::CallForHelp& e) {
+        return run_command(cl);
+    } catch (const CLI::Success& e) {  // --help, --version
         return app.exit(e);
-    } catch (const CLI::CallForAllHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForVersion& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        print_error(std::string(e.what()) + ". Run `clever-support --help` for usage.");
-        return kExitUsage;
-    }
-
-    try {
-        if (list->parsed()) return cmd_presets();
-
-        if (render->parsed()) {
-            auto r = render_scad(ropt);
-            if (!r.ok) {
-                print_error(r.error);
-                if (!r.log.empty()) std::fprintf(stderr, "%s", r.log.c_str());
-                return kExitRenderFailed;
-            }
-            std::printf("rendered %s in %.1f s\n", r.output.c_str(), r.seconds);
-            return kExitOk;
-        }
-
-        if (check->parsed()) {
-            Params p = chk.resolve();
-            RepairReport rr;
-            Mesh model = repair_mesh(read_mesh(check_model), check_model, rr);
-            Mesh sup = read_mesh(check_supports_path, /*allow_empty=*/true);
-            auto res = check_supports(model, sup, p, copt);
-            std::printf("%s", check_json ? (res.json() + "\n").c_str() : res.summary().c_str());
-            return res.ok() ? kExitOk : kExitCheckFailed;
-        }
-
-        Job job;
-        std::string dir = out_dir;
-        EditedScad edited;
-        if (regrow->parsed()) {
-            edited = read_edited_scad(regrow_file);
-            job = edited.job;
-            dir = edited.folder;
-            if (!quiet && file_sha256(job.input) != edited.input_sha256)
-                std::fprintf(stderr, "clever-support: note: %s changed since %s was written; the supports follow it as it is now\n",
-                             job.input.c_str(), regrow_file.c_str());
-        } else {
-            if (input.empty()) {
-                print_error("no input mesh given. Example: clever-support model.stl (see --help)");
-                return kExitUsage;
-            }
-            job.input = input;
-            job.defines = part_defines;
-            job.scale = scale;
-            job.fit = fit;
-            job.orient = orient;
-            job.self_intersection_check = !no_si;
-            job.timings = !no_timings;
-            job.params = gen.resolve();
-            job.edits = edits_from(gen.load_config(), gen.config, blocks, support_points);
-        }
-        // Stages in order; a terminal shows how far the run is, a pipe or file gets nothing.
-        const int total_stages = 9;
-        int stage_no = 0;
-        auto progress = [&](const std::string& stage) {
-            int pct = 100 * stage_no++ / total_stages;
-            if (verbose) std::fprintf(stderr, "  [%3d%%] %s...\n", pct, stage.c_str());
-            else if (!quiet && isatty(2)) std::fprintf(stderr, "\r\033[K  [%3d%%] %s...", pct, stage.c_str());
-        };
-        // Scoped to the run: the library itself keeps no global state.
-        std::optional<tbb::global_control> limit;
-        if (threads > 0) limit.emplace(tbb::global_control::max_allowed_parallelism, static_cast<size_t>(threads));
-        Result r = run_job(job, progress);
-        bool placed_edits = !job.edits.blockers.empty() || !job.edits.support_points.empty();
-        if (regrow->parsed() && placed_edits && pose_numbers(r.placement) != edited.pose)
-            r.warnings.push_back("the model is placed differently than when " + regrow_file +
-                                 " was written (the part, its scale or the orientation changed): check that the support "
-                                 "blockers and points still sit where you meant them");
-        if (!quiet && !verbose && isatty(2)) std::fprintf(stderr, "\r\033[K");
-        if (!quiet)
-            for (const auto& w : r.warnings) std::fprintf(stderr, "clever-support: warning: %s\n", w.c_str());
-        if (dir.empty()) dir = "out/" + r.name;
-        write_outputs(dir, output_files(r, job, CS_VERSION));
-        if (as_json) std::printf("%s", report_json(r, job).c_str());
-        else if (!quiet) std::printf("%s", human_summary(r, dir).c_str());
-        if (do_render) {
-            RenderOptions ro;
-            ro.scad = dir + "/" + r.name + ".scad";
-            auto rr = render_scad(ro);
-            if (!rr.ok) {
-                print_error(rr.error);
-                return kExitRenderFailed;
-            }
-            if (!quiet && !as_json) std::printf("  rendered    %s in %.1f s\n", rr.output.c_str(), rr.seconds);
-        }
-        if (do_preview) {
-            std::string error;
-            auto pngs = render_previews(dir + "/" + r.name + ".scad", dir + "/" + r.name, error);
-            if (!error.empty()) {
-                print_error(error);
-                return kExitRenderFailed;
-            }
-            if (!quiet && !as_json) std::printf("  pictures    %s-front.png, -back.png, -side.png\n", (dir + "/" + r.name).c_str());
-        }
-        return kExitOk;
-    } catch (const InputError& e) {
-        print_error(e.what());
-        return kExitBadInput;
-    } catch (const ParameterError& e) {
-        print_error(std::string(e.what()) + ".");
-        return kExitUsage;
-    } catch (const OutputError& e) {
-        print_error(e.what());
-        return kExitOutputFailed;
-    } catch (const std::bad_alloc&) {
-        print_error("out of memory. Try a larger --sampling or a smaller model.");
-        return kExitInternal;
-    } catch (const std::exception& e) {
-        print_error(std::string("internal error: ") + e.what() + ". Please report this with the input file.");
-        return kExitInternal;
+    } catch (...) {
+        return exit_code_for(std::current_exception());
     }
 }

@@ -11,6 +11,8 @@
 #include <cstring>
 #include <sstream>
 
+#include "core/errors.hpp"
+
 #ifndef CS_SOURCE_DIR
 #define CS_SOURCE_DIR "."
 #endif
@@ -70,6 +72,15 @@ int run(const std::vector<std::string>& argv, std::string& output) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+// A finished temporary becomes `out`. Renders have always failed with exit 5 when this fails, so
+// it is reported as the tool's failure, not as an output error.
+void rename_into_place(const std::string& tmp, const std::string& out) {
+    if (rename(tmp.c_str(), out.c_str()) == 0) return;
+    int err = errno;
+    unlink(tmp.c_str());
+    throw ExternalToolError(out + ": cannot write: " + std::strerror(err));
+}
+
 bool has_backend_option(const std::string& openscad) {
     std::string out;
     run({openscad, "--help"}, out);
@@ -102,16 +113,11 @@ std::vector<std::string> find_openscad(const std::string& forced) {
 
 RenderResult render_scad(const RenderOptions& o) {
     RenderResult r;
-    if (!is_file(o.scad)) {
-        r.error = o.scad + ": no such file. Give the .scad file that clever-support wrote.";
-        return r;
-    }
+    if (!is_file(o.scad)) throw ExternalToolError(o.scad + ": no such file. Give the .scad file that clever-support wrote.");
     auto argv = find_openscad(o.openscad);
-    if (argv.empty()) {
-        r.error = "no OpenSCAD found: run scripts/install-deps.sh (installs the Manifold runner), or install "
-                  "openscad, or set CLEVER_SUPPORT_OPENSCAD";
-        return r;
-    }
+    if (argv.empty())
+        throw ExternalToolError("no OpenSCAD found: run scripts/install-deps.sh (installs the Manifold runner), or "
+                                "install openscad, or set CLEVER_SUPPORT_OPENSCAD");
     std::string out = o.output;
     if (out.empty()) {
         out = o.scad;
@@ -132,7 +138,7 @@ RenderResult render_scad(const RenderOptions& o) {
 
     auto t0 = std::chrono::steady_clock::now();
     std::string log;
-    r.exit_code = run(argv, log);
+    const int exit_code = run(argv, log);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
     std::istringstream lines(log);
@@ -148,37 +154,29 @@ RenderResult render_scad(const RenderOptions& o) {
         if (bad && first_error.empty()) first_error = line;
     }
     bool produced = is_file(tmp);
-    if (r.exit_code != 0 || !first_error.empty() || !produced) {
+    if (exit_code != 0 || !first_error.empty() || !produced) {
         unlink(tmp.c_str());
-        r.error = "OpenSCAD failed on " + o.scad + ": " +
-                  (!first_error.empty() ? first_error
-                                        : (r.exit_code != 0 ? "exit code " + std::to_string(r.exit_code) : "no output written")) +
-                  ". Command: " + r.command;
-        return r;
+        throw ExternalToolError("OpenSCAD failed on " + o.scad + ": " +
+                                    (!first_error.empty() ? first_error
+                                                          : (exit_code != 0 ? "exit code " + std::to_string(exit_code)
+                                                                            : "no output written")) +
+                                    ". Command: " + r.command,
+                                r.log);
     }
-    if (rename(tmp.c_str(), out.c_str()) != 0) {
-        unlink(tmp.c_str());
-        r.error = out + ": cannot write: " + std::strerror(errno);
-        return r;
-    }
-    r.ok = true;
+    rename_into_place(tmp, out);
     return r;
 }
 
-std::vector<std::string> render_previews(const std::string& scad, const std::string& stem, std::string& error) {
+std::vector<std::string> render_previews(const std::string& scad, const std::string& stem) {
     std::vector<std::string> written;
     std::string native = which("openscad");
-    if (native.empty()) {
-        error = "pictures need a native openscad (Debian package openscad): run scripts/install-deps.sh";
-        return written;
-    }
+    if (native.empty())
+        throw ExternalToolError("pictures need a native openscad (Debian package openscad): run scripts/install-deps.sh");
     std::vector<std::string> prefix;
     if (!std::getenv("DISPLAY")) {
         std::string xvfb = which("xvfb-run");
-        if (xvfb.empty()) {
-            error = "pictures need a display or xvfb-run (Debian package xvfb): run scripts/install-deps.sh";
-            return written;
-        }
+        if (xvfb.empty())
+            throw ExternalToolError("pictures need a display or xvfb-run (Debian package xvfb): run scripts/install-deps.sh");
         prefix = {xvfb, "-a"};
     }
     // Gimbal camera: rotations about x, y, z (degrees); --viewall frames the whole print.
@@ -196,14 +194,9 @@ std::vector<std::string> render_previews(const std::string& scad, const std::str
         int code = run(argv, log);
         if (code != 0 || !is_file(tmp) || log.find("ERROR:") != std::string::npos) {
             unlink(tmp.c_str());
-            error = "OpenSCAD could not draw " + scad + " (exit code " + std::to_string(code) + ")";
-            return written;
+            throw ExternalToolError("OpenSCAD could not draw " + scad + " (exit code " + std::to_string(code) + ")");
         }
-        if (rename(tmp.c_str(), out.c_str()) != 0) {
-            unlink(tmp.c_str());
-            error = out + ": cannot write: " + std::strerror(errno);
-            return written;
-        }
+        rename_into_place(tmp, out);
         written.push_back(out);
     }
     return written;

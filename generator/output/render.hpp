@@ -21,24 +21,25 @@ struct RenderOptions {
     std::vector<std::string> extra;    // further arguments for openscad (e.g. --camera for png)
 };
 
+// A render that succeeded (a failed one throws).
 struct RenderResult {
-    bool ok = false;
-    int exit_code = 0;
-    std::string command;  // what was run, for messages
+    std::string command;  // what was run
     std::string log;      // OpenSCAD's messages (noise removed)
-    std::string error;    // why it failed
     double seconds = 0;
-    std::string output;
+    std::string output;   // the file written
 };
 
 // The command that will render (first of the preference list that exists), as argv prefix.
 std::vector<std::string> find_openscad(const std::string& forced = "");
 
+// Throws ExternalToolError (core/errors.hpp) when there is no OpenSCAD, when it fails or reports an
+// error (the error carries OpenSCAD's log), or when the output cannot be renamed into place.
 RenderResult render_scad(const RenderOptions& o);
 
 // Pictures of a generated .scad (model grey, supports orange) from three viewpoints, written as
 // <stem>-front.png, <stem>-back.png, <stem>-side.png. Needs a native openscad (the wasm build has
-// no OpenGL) and, without a display, xvfb-run. Returns the files written, or sets `error`.
-std::vector<std::string> render_previews(const std::string& scad, const std::string& stem, std::string& error);
+// no OpenGL) and, without a display, xvfb-run. Returns the files written; throws ExternalToolError
+// when a picture cannot be drawn (the pictures drawn before it stay).
+std::vector<std::string> render_previews(const std::string& scad, const std::string& stem);
 
 }  // namespace cs

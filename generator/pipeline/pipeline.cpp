@@ -156,10 +156,12 @@ Mesh load_input(const std::string& path, const std::vector<std::string>& defines
     o.scad = path;
     o.output = std::string(tmpl) + ".stl";
     o.defines = defines;
-    auto rendered = render_scad(o);
-    if (!rendered.ok)
-        throw InputError(path + ": OpenSCAD could not render the part: " + rendered.error +
-                         (rendered.log.empty() ? "" : "\nOpenSCAD said:\n" + rendered.log));
+    try {
+        render_scad(o);
+    } catch (const ExternalToolError& e) {
+        throw InputError(path + ": OpenSCAD could not render the part: " + e.what() +
+                         (e.log.empty() ? "" : "\nOpenSCAD said:\n" + e.log));
+    }
     try {
         Mesh m = read_mesh(o.output);
         unlink(o.output.c_str());

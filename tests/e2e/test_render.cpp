@@ -9,6 +9,7 @@
 
 #include "check/check.hpp"
 #include "mesh/mesh_io.hpp"
+#include "core/errors.hpp"
 #include "output/render.hpp"
 #include "support.hpp"
 
@@ -59,14 +60,16 @@ Rendered render_with(const std::string& openscad, const std::string& scad, const
     o.output = out;
     o.openscad = openscad;
     o.defines = std::move(defines);
-    auto r = render_scad(o);
     Rendered x;
-    x.ok = r.ok;
-    x.error = r.error + "\n" + r.log;
-    if (r.ok) {
-        x.mesh = read_mesh(out);
-        x.volume = signed_volume(x.mesh);
+    try {
+        render_scad(o);
+    } catch (const ExternalToolError& e) {
+        x.error = std::string(e.what()) + "\n" + e.log;
+        return x;
     }
+    x.ok = true;
+    x.mesh = read_mesh(out);
+    x.volume = signed_volume(x.mesh);
     return x;
 }
 

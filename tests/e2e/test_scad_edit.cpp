@@ -12,6 +12,7 @@
 #include "edit/scad_values.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/repair.hpp"
+#include "core/errors.hpp"
 #include "output/render.hpp"
 #include "support.hpp"
 #include "../unit/shapes.hpp"
@@ -366,9 +367,10 @@ double rendered_volume(const std::string& openscad, const std::string& scad, con
     o.output = out;
     o.openscad = openscad;
     o.defines = {"show_model=false"};
-    auto r = render_scad(o);
-    if (!r.ok) {
-        error = r.error + "\n" + r.log;
+    try {
+        render_scad(o);
+    } catch (const ExternalToolError& e) {
+        error = std::string(e.what()) + "\n" + e.log;
         return -1;
     }
     Mesh m = read_mesh(out);
