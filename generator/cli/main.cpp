@@ -12,10 +12,12 @@
 #include <sstream>
 #include <cmath>
 #include <optional>
+#include <type_traits>
 #include <tbb/global_control.h>
 
 #include "check/check.hpp"
 #include "core/errors.hpp"
+#include "core/param_table.hpp"
 #include "edit/edited_scad.hpp"
 #include "mesh/mesh_io.hpp"
 #include "output/outputs.hpp"
@@ -30,75 +32,41 @@ namespace {
 
 using namespace cs;
 
-// Flags that override the chosen preset; unset ones leave it alone.
+// The parameters of a command: --preset, --config and one flag per row of the parameter table
+// (core/param_table.hpp). Flags not given leave the preset's and the config file's values alone.
 struct ParamFlags {
     std::string preset = "generic-0.4";
-    std::optional<double> critical_angle, layer_height, line_width, wall, sampling, tip_length, tip_diameter, gap, k,
-        d_min, d_max, strength_length, foot_height, foot_extra, clearance;
-    std::optional<bool> feet;
-    bool buildplate_only = false;
-    std::optional<std::string> strategy;
-
     bool preset_given = false;
+    std::string config;  // a user's own preset: JSON of flag names and values
+    std::vector<std::pair<const ParamRow*, ParamValue>> given;  // flags, in the order given
 
-    // The config file's keys are the flag names without dashes' leading "--" (e.g. "critical-angle").
-    void apply_config(const nlohmann::json& cfg, Params& p) const {
-        const std::map<std::string, double Params::*> numbers = {
-            {"critical-angle", &Params::critical_angle}, {"layer-height", &Params::layer_height},
-            {"line-width", &Params::line_width},         {"wall", &Params::wall_thickness},
-            {"sampling", &Params::sampling_distance},    {"tip-length", &Params::tip_length},
-            {"tip-diameter", &Params::tip_diameter},     {"gap", &Params::gap},
-            {"k", &Params::k},                           {"d-min", &Params::d_min},
-            {"d-max", &Params::d_max},                   {"strength-length", &Params::strength_length},
-            {"foot-height", &Params::foot_height},       {"foot-extra", &Params::foot_extra},
-            {"clearance", &Params::model_clearance}};
-        for (const auto& [key, value] : cfg.items()) {
-            auto where = "--config " + config + ": \"" + key + "\"";
-            if (key == "preset" || key == "description" || key == "block" || key == "support-point") continue;  // edits: see edits_from()
-            if (auto it = numbers.find(key); it != numbers.end()) {
-                if (!value.is_number()) throw ParameterError(where + " must be a number");
-                p.*(it->second) = value.get<double>();
-            } else if (key == "feet" || key == "buildplate-only") {
-                if (!value.is_boolean()) throw ParameterError(where + " must be true or false");
-                if (key == "feet") p.feet = value.get<bool>();
-                else p.supports_on_model = !value.get<bool>();
-            } else if (key == "strategy") {
-                if (!value.is_string()) throw ParameterError(where + " must be \"tree\" or \"columns\"");
-                p.strategy = parse_strategy(value.get<std::string>());
-            } else {
-                throw ParameterError(where + " is not a parameter (use the flag names, e.g. \"critical-angle\")");
-            }
-        }
-        p.preset = cfg.value("preset", p.preset) + (config.empty() ? "" : " + " + config);
-    }
-
+    // One option per row: numbers take a number, yes/no rows true/false, negated rows are bare
+    // flags (--buildplate-only), the strategy its name.
     void add_to(CLI::App& app) {
         app.add_option("--preset", preset, "Printer preset (see `clever-support presets`)")
             ->capture_default_str()
             ->each([this](const std::string&) { preset_given = true; });
         app.add_option("--config", config, "A JSON file with your own preset: {\"preset\": ..., \"sampling\": 2, ...}");
-        auto g = "Parameters (override the preset)";
-        app.add_option("--critical-angle", critical_angle, "Steepest printable overhang, degrees from vertical")->group(g);
-        app.add_option("--layer-height", layer_height, "Layer height, mm")->group(g);
-        app.add_option("--line-width", line_width, "Extrusion width, mm")->group(g);
-        app.add_option("--wall", wall, "N-profile wall thickness, mm")->group(g);
-        app.add_option("--sampling", sampling, "Overhang sample spacing, mm")->group(g);
-        app.add_option("--tip-length", tip_length, "Tapered tip length, mm")->group(g);
-        app.add_option("--tip-diameter", tip_diameter, "Tip width at the model, mm")->group(g);
-        app.add_option("--gap", gap, "Z gap between tips and the model, mm")->group(g);
-        app.add_option("--k", k, "Eqn (1) coefficient: d = k * length[mm] * angle[deg]")->group(g);
-        app.add_option("--d-min", d_min, "Thinnest strut, mm")->group(g);
-        app.add_option("--d-max", d_max, "Thickest strut, mm")->group(g);
-        app.add_option("--strength-length", strength_length, "Safe length of a 1 mm strut at <= 30 deg, mm")->group(g);
-        app.add_option("--feet", feet, "Feet on the bed (true/false)")->group(g);
-        app.add_option("--foot-height", foot_height, "Foot height, mm")->group(g);
-        app.add_option("--foot-extra", foot_extra, "Foot overhang beyond the strut on each side, mm")->group(g);
-        app.add_option("--clearance", clearance, "Air kept between struts and the model, mm")->group(g);
-        app.add_flag("--buildplate-only", buildplate_only, "Supports stand on the bed only, routed around the model")->group(g);
-        app.add_option("--strategy", strategy, "tree (default) or columns (the vertical-columns baseline)")->group(g);
+        for (const ParamRow& row : param_table()) add_flag_for(app, row)->group("Parameters (override the preset)");
     }
 
-    std::string config;  // a user's own preset: JSON of flag names and values
+    CLI::Option* add_flag_for(CLI::App& app, const ParamRow& row) {
+        auto remember = [this, &row](ParamValue v) { given.emplace_back(&row, std::move(v)); };
+        return std::visit(
+            [&](auto member) -> CLI::Option* {
+                using M = decltype(member);
+                if constexpr (std::is_same_v<M, double Params::*>)
+                    return app.add_option_function<double>(row.flag, [=](const double& v) { remember(v); }, row.help);
+                else if constexpr (std::is_same_v<M, bool Params::*>)
+                    return app.add_option_function<bool>(row.flag, [=](const bool& v) { remember(v); }, row.help);
+                else if constexpr (std::is_same_v<M, Negated>)
+                    return app.add_flag_callback(row.flag, [=] { remember(true); }, row.help);
+                else
+                    return app.add_option_function<std::string>(row.flag, [=](const std::string& v) { remember(v); },
+                                                                row.help);
+            },
+            row.member);
+    }
 
     nlohmann::json load_config() const {
         nlohmann::json cfg;
@@ -120,27 +88,12 @@ struct ParamFlags {
         nlohmann::json cfg = load_config();
         if (cfg.contains("preset") && !preset_given) base = cfg["preset"].get<std::string>();
         Params p = preset_params(base);
-        if (!cfg.is_null()) apply_config(cfg, p);
-        auto set = [](double& dst, const std::optional<double>& v) { if (v) dst = *v; };
-        set(p.critical_angle, critical_angle);
-        set(p.layer_height, layer_height);
-        set(p.line_width, line_width);
-        set(p.wall_thickness, wall);
-        set(p.sampling_distance, sampling);
-        set(p.tip_length, tip_length);
-        set(p.tip_diameter, tip_diameter);
-        set(p.gap, gap);
-        set(p.k, k);
-        set(p.d_min, d_min);
-        set(p.d_max, d_max);
-        set(p.strength_length, strength_length);
-        set(p.foot_height, foot_height);
-        set(p.foot_extra, foot_extra);
-        set(p.model_clearance, clearance);
-        if (feet) p.feet = *feet;
-        if (buildplate_only) p.supports_on_model = false;
-        if (strategy) p.strategy = parse_strategy(*strategy);
-        if (auto why = p.validate(); !why.empty()) throw ParameterError(why);
+        if (!cfg.is_null()) {
+            apply_config(cfg, p, "--config " + config);
+            p.preset = cfg.value("preset", p.preset) + " + " + config;
+        }
+        for (const auto& [row, value] : given) set_param(*row, value, p);
+        validate_params(p);
         return p;
     }
 };

@@ -7,28 +7,6 @@
 
 namespace cs {
 
-std::string Params::validate() const {
-    auto bad = [](const char* name, double v, const char* range) {
-        return std::string(name) + " = " + std::to_string(v) + " is out of range (" + range + ")";
-    };
-    if (!(critical_angle >= 5 && critical_angle <= 80)) return bad("critical_angle", critical_angle, "5..80 degrees");
-    if (!(layer_height > 0.01 && layer_height <= 2)) return bad("layer_height", layer_height, "0.01..2 mm");
-    if (!(wall_thickness > 0.05 && wall_thickness <= 5)) return bad("wall_thickness", wall_thickness, "0.05..5 mm");
-    if (!(sampling_distance >= 0.05 && sampling_distance <= 50))
-        return bad("sampling_distance", sampling_distance, "0.05..50 mm");
-    if (!(tip_length >= 0 && tip_length <= 20)) return bad("tip_length", tip_length, "0..20 mm");
-    if (!(tip_diameter > 0 && tip_diameter <= 10)) return bad("tip_diameter", tip_diameter, "0..10 mm");
-    if (!(gap >= 0 && gap <= 5)) return bad("gap", gap, "0..5 mm");
-    if (!(k >= 0 && k <= 1)) return bad("k", k, "0..1 mm per (mm*degree)");
-    if (!(d_min > 0 && d_min <= 50)) return bad("d_min", d_min, "0..50 mm");
-    if (!(d_max >= d_min && d_max <= 100)) return bad("d_max", d_max, "d_min..100 mm");
-    if (!(strength_length > 0)) return bad("strength_length", strength_length, "> 0 mm");
-    if (!(foot_height >= 0 && foot_height <= 20)) return bad("foot_height", foot_height, "0..20 mm");
-    if (!(foot_extra >= 0 && foot_extra <= 20)) return bad("foot_extra", foot_extra, "0..20 mm");
-    if (!(model_clearance >= 0 && model_clearance <= 10)) return bad("model_clearance", model_clearance, "0..10 mm");
-    return "";
-}
-
 const std::vector<Preset>& presets() {
     static const std::vector<Preset> all = [] {
         std::vector<Preset> v;

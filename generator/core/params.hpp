@@ -1,5 +1,6 @@
 // Printer and algorithm parameters: one struct, one preset per printer.
-// Units: millimetres and degrees. See README "Parameters" for the meaning of each.
+// Units: millimetres and degrees. See README "Parameters" for the meaning of each, and
+// core/param_table.hpp for how each is named and checked outside.
 #pragma once
 
 #include <string>
@@ -45,9 +46,7 @@ struct Params {
     // Support blockers (placed-model coordinates): no tip, strut, foot or pillar may enter them.
     // Set from a user's edits (--block, support_blockers in a generated .scad); empty by default.
     std::vector<Box3> keep_out;
-
-    // Returns a description of the first invalid value, or "" when all are valid.
-    std::string validate() const;
+    // Flags, config keys, valid ranges, report keys and .scad names of these: core/param_table.hpp.
 };
 
 struct Preset {

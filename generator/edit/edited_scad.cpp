@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "core/errors.hpp"
+#include "core/param_table.hpp"
 #include "edit/scad_values.hpp"
 
 namespace cs {
@@ -65,27 +66,18 @@ private:
     std::string file_;
 };
 
+// Every parameter under its .scad name (core/param_table.hpp), each read as its row's kind.
 Params read_params(const Reader& r) {
     Params p;
     p.preset = r.text("cs_preset");
-    p.k = r.number("k");
-    p.d_min = r.number("d_min");
-    p.d_max = r.number("d_max");
-    p.strength_length = r.number("strength_length");
-    p.wall_thickness = r.number("wall");
-    p.tip_length = r.number("tip_length");
-    p.tip_diameter = r.number("tip_diameter");
-    p.feet = r.boolean("feet");
-    p.foot_height = r.number("foot_height");
-    p.foot_extra = r.number("foot_extra");
-    p.critical_angle = r.number("critical_angle");
-    p.sampling_distance = r.number("sampling");
-    p.gap = r.number("gap");
-    p.model_clearance = r.number("clearance");
-    p.supports_on_model = !r.boolean("buildplate_only");
-    p.layer_height = r.number("cs_layer_height");
-    p.line_width = r.number("cs_line_width");
-    p.strategy = parse_strategy(r.text("cs_strategy"));
+    for (const auto& row : param_table()) {
+        const std::string name = row.scad.name;
+        ParamValue value;
+        if (std::holds_alternative<double Params::*>(row.member)) value = r.number(name);
+        else if (std::holds_alternative<Strategy Params::*>(row.member)) value = r.text(name);
+        else value = r.boolean(name);
+        set_param(row, value, p);
+    }
     return p;
 }
 
@@ -154,8 +146,12 @@ EditedScad read_edited_scad(const std::string& path) {
     if (double fit = r.number("cs_fit"); fit > 0) job.fit = fit;
     job.self_intersection_check = r.boolean("cs_self_intersection_check");
     job.timings = r.boolean("cs_timings");
-    job.params = read_params(r);
-    if (auto why = job.params.validate(); !why.empty()) throw ParameterError(path + ": " + why);
+    try {  // a strategy that is none, or a value out of range
+        job.params = read_params(r);
+        validate_params(job.params, ParamNaming::scad);
+    } catch (const ParameterError& e) {
+        throw ParameterError(path + ": " + e.what());
+    }
     job.edits = read_edits(r, check_tree(r));
     out.input_sha256 = r.text("cs_input_sha256");
     const auto& pose = r.list("cs_pose");

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/errors.hpp"
+#include "core/param_table.hpp"
 #include "mesh/mesh_io.hpp"
 #include "output/scad.hpp"
 #include "output/threemf.hpp"
@@ -20,26 +21,15 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
+// The preset, then every row of the parameter table under its report key. Reports have always
+// listed the clearance last (it was added last): kept there so reports stay byte-identical.
 json params_json(const Params& p) {
-    return {{"preset", p.preset},
-            {"critical_angle_deg", p.critical_angle},
-            {"layer_height_mm", p.layer_height},
-            {"line_width_mm", p.line_width},
-            {"wall_thickness_mm", p.wall_thickness},
-            {"sampling_distance_mm", p.sampling_distance},
-            {"tip_length_mm", p.tip_length},
-            {"tip_diameter_mm", p.tip_diameter},
-            {"gap_mm", p.gap},
-            {"k", p.k},
-            {"d_min_mm", p.d_min},
-            {"d_max_mm", p.d_max},
-            {"strength_length_mm", p.strength_length},
-            {"feet", p.feet},
-            {"foot_height_mm", p.foot_height},
-            {"foot_extra_mm", p.foot_extra},
-            {"buildplate_only", !p.supports_on_model},
-            {"strategy", to_string(p.strategy)},
-            {"model_clearance_mm", p.model_clearance}};
+    json j = {{"preset", p.preset}};
+    const ParamRow* last = find_param("--clearance");
+    for (const auto& row : param_table())
+        if (&row != last) j[row.report_key] = param_value_json(row, p);
+    j[last->report_key] = param_value_json(*last, p);
+    return j;
 }
 
 json supports_json(const Supports& s, const Params& p) {

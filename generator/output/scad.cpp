@@ -4,6 +4,7 @@
 #include <cmath>
 #include <fmt/format.h>
 
+#include "core/param_table.hpp"
 #include "scad_template_text.hpp"  // generated: kScadTemplate
 
 namespace cs {
@@ -20,6 +21,9 @@ std::string num(double v) {
 std::string pt(const Vec3& v) { return fmt::format("[{}, {}, {}]", num(v.x), num(v.y), num(v.z)); }
 std::string exact_pt(const Vec3& v) { return fmt::format("[{}, {}, {}]", scad_number(v.x), scad_number(v.y), scad_number(v.z)); }
 std::string boolean(bool b) { return b ? "true" : "false"; }
+std::string scad_value(double v) { return scad_number(v); }
+std::string scad_value(bool b) { return boolean(b); }
+std::string scad_value(const std::string& text) { return scad_string(text); }
 
 // `// why` lines, then `name = value; // [slider]` (the Customizer's range, when given).
 std::string assignment(const std::string& why, const std::string& name, const std::string& value,
@@ -75,26 +79,21 @@ std::string header(const Supports& sp, const Job& job, const ScadMeta& meta) {
     return s;
 }
 
+// The parameter table's rows for one place in the file (core/param_table.hpp), in table order.
+std::string param_assignments(const Params& p, ScadPlace place) {
+    std::string s;
+    for (const auto& row : param_table()) {
+        if (row.scad.place != place) continue;
+        std::string value = std::visit([](const auto& v) { return scad_value(v); }, get_param(row, p));
+        s += assignment(row.scad.why, row.scad.name, value, row.scad.slider);
+    }
+    return s;
+}
+
 std::string customizer(const Params& p) {
-    std::string s = "/* [Strut sizing] */\n";
-    s += assignment("Eqn (1) coefficient k in d = k * length * angle (mm per mm-degree): larger makes slanted struts thicker",
-                    "k", scad_number(p.k), "[0:0.0005:0.02]");
-    s += assignment("Thinnest strut (mm)", "d_min", scad_number(p.d_min), "[0.3:0.1:5]");
-    s += assignment("Thickest strut (mm)", "d_max", scad_number(p.d_max), "[1:0.1:10]");
-    s += assignment("Strength rule: a 1 mm strut stays safe this long (mm) at <= 30 deg; safe length grows with width^2",
-                    "strength_length", scad_number(p.strength_length), "[5:1:120]");
-    s += "\n/* [Walls and tips] */\n";
-    s += assignment("Wall thickness of the N-profile (mm); slicers drop walls of one line width (0.4)", "wall",
-                    scad_number(p.wall_thickness), "[0.3:0.05:2]");
-    s += assignment("Length of the tapered tip at each model contact (mm)", "tip_length", scad_number(p.tip_length),
-                    "[0.2:0.1:5]");
-    s += assignment("Width of a tip where it meets the model (mm)", "tip_diameter", scad_number(p.tip_diameter),
-                    "[0.2:0.05:3]");
-    s += "\n/* [Feet] */\n";
-    s += assignment("Widen every strut where it stands on the bed", "feet", boolean(p.feet));
-    s += assignment("Height of a foot (mm)", "foot_height", scad_number(p.foot_height), "[0:0.1:5]");
-    s += assignment("How much wider than its strut a foot is on each side (mm)", "foot_extra", scad_number(p.foot_extra),
-                    "[0:0.1:5]");
+    std::string s = "/* [Strut sizing] */\n" + param_assignments(p, ScadPlace::strut_sizing);
+    s += "\n/* [Walls and tips] */\n" + param_assignments(p, ScadPlace::walls_and_tips);
+    s += "\n/* [Feet] */\n" + param_assignments(p, ScadPlace::feet);
     s += "\n/* [Show] */\n" + assignment("", "show_model", "true") + assignment("", "show_supports", "true") + "\n";
     return s;
 }
@@ -121,14 +120,7 @@ std::string manual_edits(const ManualEdits& e) {
 
 std::string regrow_section(const Params& p) {
     std::string s = "/* [Regrow] */\n// These take effect only with `clever-support regrow THIS.scad`.\n";
-    s += assignment("Steepest overhang printed without support (degrees from vertical)", "critical_angle",
-                    scad_number(p.critical_angle), "[5:1:80]");
-    s += assignment("Spacing of the supported points under overhangs (mm)", "sampling", scad_number(p.sampling_distance),
-                    "[0.25:0.25:10]");
-    s += assignment("Air between a tip and the model (mm)", "gap", scad_number(p.gap), "[0:0.05:1]");
-    s += assignment("Air kept between struts and the model (mm)", "clearance", scad_number(p.model_clearance), "[0:0.05:2]");
-    s += assignment("Supports stand on the bed only, routed around the model", "buildplate_only", boolean(!p.supports_on_model));
-    return s + "\n";
+    return s + param_assignments(p, ScadPlace::regrow) + "\n";
 }
 
 std::string provenance(const Job& job, const ScadMeta& meta) {

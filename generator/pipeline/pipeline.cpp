@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "core/errors.hpp"
+#include "core/param_table.hpp"
 #include "mesh/mesh_io.hpp"
 #include "output/render.hpp"
 #include "query/model_query.hpp"
@@ -173,7 +174,7 @@ Mesh load_input(const std::string& path, const std::vector<std::string>& defines
 }
 
 Result run_job(const Job& job, const std::function<void(const std::string&)>& progress) {
-    if (auto why = job.params.validate(); !why.empty()) throw ParameterError(why);
+    validate_params(job.params);
     if (!(job.scale != 0 && std::isfinite(job.scale)))
         throw ParameterError("--scale must be a non-zero number");
     if (job.fit && !(*job.fit > 0 && std::isfinite(*job.fit))) throw ParameterError("--fit must be a positive size in mm");
