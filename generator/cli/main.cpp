@@ -1,14 +1,12 @@
-// clever-support command line: generate (default), check, render, presets.
+// clever-support command line: generate (default), regrow, check, render, presets; one function
+// per subcommand, and exit_code_for(), the one place errors become messages and exit codes.
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 #include <fstream>
-#include <map>
 #include <nlohmann/json.hpp>
-#include <fmt/format.h>
-#include <iostream>
 #include <sstream>
 #include <cmath>
 #include <optional>

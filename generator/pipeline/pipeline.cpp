@@ -51,6 +51,47 @@ std::string stem(const std::string& path) {
     return dot == std::string::npos || dot == 0 ? base : base.substr(0, dot);
 }
 
+// Scales `mesh` by --scale, or to --fit's size, and returns the factor; warns when the size
+// suggests the file is not in millimetres.
+double scale_to_mm(Mesh& mesh, const Job& job, std::vector<std::string>& warnings) {
+    const std::string& input = job.shown_input();
+    double scale = job.scale;
+    if (job.fit) {
+        Vec3 size = bounding_box(mesh).size();
+        scale = *job.fit / std::max({size.x, size.y, size.z});
+    }
+    for (auto& v : mesh.vertices) v = v * scale;
+    if (scale < 0)
+        for (auto& f : mesh.faces) std::swap(f[1], f[2]);
+    Vec3 size = bounding_box(mesh).size();
+    double largest = std::max({size.x, size.y, size.z});
+    if (largest < 1.0)
+        warnings.push_back(input + ": the model is only " + std::to_string(largest) +
+                           " mm across; if its units are not millimetres use --scale (e.g. 25.4 for inches) or --fit MM");
+    if (largest > 1000.0)
+        warnings.push_back(input + ": the model is " + std::to_string(largest) +
+                           " mm across (over 1 m); if its units are not millimetres use --scale or --fit MM");
+    return scale;
+}
+
+// choose_orientation with the support each candidate pose really needs. Candidate poses are
+// compared by trees grown from samples twice as sparse: a quarter of the work, and the ranking of
+// poses holds (the chosen pose's tree is then grown in full).
+Orientation orient_by_support(const Mesh& scaled, const Params& p, const std::string& orient) {
+    Params coarse = p;
+    coarse.sampling_distance = 2 * p.sampling_distance;
+    coarse.keep_out.clear();  // a user's blockers are in the chosen pose's coordinates
+    OverhangOptions coarse_oo{p.critical_angle, coarse.sampling_distance, p.layer_height, touching_space(p)};
+    return choose_orientation(scaled, p, orient, [&](const Mesh& rotated) {
+        Placement pl;
+        Rotation id;
+        Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
+        auto samples = sample_overhangs(placed, coarse_oo);
+        Supports s = build_supports(placed, samples.samples, coarse);
+        return PoseSupport{s.volume, s.sized.tree.stats.model_contacts, bounding_box(placed).size().z};
+    });
+}
+
 }  // namespace
 
 Supports build_supports(const Mesh& placed, const std::vector<Sample>& samples, const Params& p) {
@@ -199,41 +240,10 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     }
 
     // Scale first, so orientation and placement see millimetres.
-    double scale = job.scale;
-    if (job.fit) {
-        Vec3 size = bounding_box(repaired).size();
-        scale = *job.fit / std::max({size.x, size.y, size.z});
-    }
     Mesh scaled = std::move(repaired);
-    for (auto& v : scaled.vertices) v = v * scale;
-    if (scale < 0)
-        for (auto& f : scaled.faces) std::swap(f[1], f[2]);
-    Vec3 size = bounding_box(scaled).size();
-    double largest = std::max({size.x, size.y, size.z});
-    if (largest < 1.0)
-        r.warnings.push_back(input + ": the model is only " + std::to_string(largest) +
-                             " mm across; if its units are not millimetres use --scale (e.g. 25.4 for inches) or --fit MM");
-    if (largest > 1000.0)
-        r.warnings.push_back(input + ": the model is " + std::to_string(largest) +
-                             " mm across (over 1 m); if its units are not millimetres use --scale or --fit MM");
-
+    const double scale = scale_to_mm(scaled, job, r.warnings);
     OverhangOptions oo{p.critical_angle, p.sampling_distance, p.layer_height, touching_space(p)};
-    // Candidate poses are compared by trees grown from samples twice as sparse: a quarter of the
-    // work, and the ranking of poses holds (the chosen pose's tree is then grown in full).
-    Params coarse = p;
-    coarse.sampling_distance = 2 * p.sampling_distance;
-    coarse.keep_out.clear();  // a user's blockers are in the chosen pose's coordinates
-    OverhangOptions coarse_oo{p.critical_angle, coarse.sampling_distance, p.layer_height, touching_space(p)};
-    r.orientation = sw.time("orient", progress, [&] {
-        return choose_orientation(scaled, p, job.orient, [&](const Mesh& rotated) {
-            Placement pl;
-            Rotation id;
-            Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
-            auto samples = sample_overhangs(placed, coarse_oo);
-            Supports s = build_supports(placed, samples.samples, coarse);
-            return PoseSupport{s.volume, s.sized.tree.stats.model_contacts, bounding_box(placed).size().z};
-        });
-    });
+    r.orientation = sw.time("orient", progress, [&] { return orient_by_support(scaled, p, job.orient); });
     r.model = place_on_bed(scaled, 1.0, r.orientation.rotation.m, r.placement);
     r.placement.scale = scale;
     scaled = Mesh();
