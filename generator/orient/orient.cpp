@@ -67,24 +67,11 @@ Rotation rotation_to_down(const Vec3& down) {
     return r;
 }
 
-Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::string& mode,
-                               const std::function<PoseSupport(const Mesh& rotated)>& support,
-                               size_t evaluate_best) {
-    Orientation o;
-    const OrientRequest request = parse_orient(mode);
-    o.mode = request.mode;
-    if (request.mode == OrientMode::keep) {
-        o.decided_by = "kept";
-        return o;
-    }
-    if (request.mode == OrientMode::euler) {
-        o.decided_by = "given";
-        const auto& a = request.degrees;
-        rotation_from_euler_deg(a[0], a[1], a[2], o.rotation.m);
-        return o;
-    }
+namespace {
 
-    // Candidates: the input pose first (wins ties), the six axes, then hull rest positions.
+// Candidate "down" directions with their source: the input pose first (wins ties), the six axes,
+// then hull rest positions; none repeating an earlier one.
+std::vector<std::pair<Vec3, std::string>> candidate_directions(const Mesh& mesh) {
     std::vector<std::pair<Vec3, std::string>> dirs{{{0, 0, -1}, "input"}};
     for (Vec3 d : {Vec3{0, 0, 1}, Vec3{1, 0, 0}, Vec3{-1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, -1, 0}})
         dirs.push_back({d, "axis"});
@@ -111,6 +98,29 @@ Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::str
         bool dup = std::any_of(unique.begin(), unique.end(), [&](const auto& u) { return dot(u.first, d.first) > std::cos(2 * M_PI / 180); });
         if (!dup) unique.push_back(d);
     }
+    return unique;
+}
+
+}  // namespace
+
+Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::string& mode,
+                               const std::function<PoseSupport(const Mesh& rotated)>& support,
+                               size_t evaluate_best) {
+    Orientation o;
+    const OrientRequest request = parse_orient(mode);
+    o.mode = request.mode;
+    if (request.mode == OrientMode::keep) {
+        o.decided_by = "kept";
+        return o;
+    }
+    if (request.mode == OrientMode::euler) {
+        o.decided_by = "given";
+        const auto& a = request.degrees;
+        rotation_from_euler_deg(a[0], a[1], a[2], o.rotation.m);
+        return o;
+    }
+
+    const auto unique = candidate_directions(mesh);
 
     o.candidates.resize(unique.size());
     tbb::parallel_for(size_t(0), unique.size(), [&](size_t i) {

@@ -161,6 +161,15 @@ TEST(ParamTable, ValidateEnforcesEveryRangeNamingTheFlag) {
     }
 }
 
+TEST(ParamTable, EveryFlagIsInTheReadmeParameterTable) {
+    const std::string readme = read_text(source_dir() + "/README.md");
+    const auto from = readme.find("### Parameters"), to = readme.find("**Adding a parameter.**");
+    ASSERT_TRUE(from != std::string::npos && to != std::string::npos && from < to) << "README's Parameters section moved";
+    const std::string section = readme.substr(from, to - from);
+    for (const auto& row : param_table())
+        EXPECT_TRUE(contains(section, "`" + std::string(row.flag) + "`")) << row.flag << " is not in README's Parameters table";
+}
+
 TEST(ParamTable, NegatedRowIsTheBuildplateOnlySwitch) {
     const ParamRow* row = find_param("buildplate-only");
     ASSERT_NE(row, nullptr);
