@@ -2,44 +2,43 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <queue>
 #include <unordered_map>
 
+#include "core/xy_grid.hpp"
 #include "query/model_query.hpp"
 #include "struts/placement.hpp"
 
 namespace cs {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
-
 // Unit directions of the cone fan: the axis, then rings at half and 95% of the critical angle.
 // 95% keeps a contact tip (which sits above its model point) inside the cone.
 std::vector<Vec3> cone_fan(double critical_angle_deg) {
     std::vector<Vec3> dirs{{0, 0, -1}};
     for (double f : {0.5, 0.95}) {
-        double a = f * critical_angle_deg * kDeg;
+        double a = deg_to_rad(f * critical_angle_deg);
         for (int i = 0; i < 8; ++i) {
-            double phi = i * M_PI / 4 + (f < 0.9 ? 0 : M_PI / 8);
+            double phi = i * std::numbers::pi / 4 + (f < 0.9 ? 0 : std::numbers::pi / 8);
             dirs.push_back({std::sin(a) * std::cos(phi), std::sin(a) * std::sin(phi), -std::cos(a)});
         }
     }
     return dirs;
 }
 
-// Active nodes in a uniform XY hash grid, for the "other active points" of the sweep.
+// Active nodes in an XY grid, for the "other active points" of the sweep, and as one list.
 class ActiveGrid {
 public:
-    explicit ActiveGrid(double cell) : cell_(cell) {}
+    explicit ActiveGrid(double cell) : grid_(cell) {}
 
     void insert(int id, const Vec3& p) {
-        cells_[key(p)].push_back(id);
+        grid_.insert(p, id);
         pos_[id] = list_.size();
         list_.push_back(id);
     }
     void remove(int id, const Vec3& p) {
-        auto& v = cells_[key(p)];
-        v.erase(std::find(v.begin(), v.end(), id));
+        grid_.erase(p, id);
         size_t i = pos_[id];
         pos_[list_.back()] = i;
         list_[i] = list_.back();
@@ -52,30 +51,18 @@ public:
     // that nothing farther can matter; falls back to all nodes when rings outgrow the population.
     template <typename Visit, typename Stop>
     void visit_near(const Vec3& p, Visit visit, Stop stop) const {
-        long ci = idx(p.x), cj = idx(p.y);
         for (long k = 0;; ++k) {
             if ((2 * k + 1) * (2 * k + 1) > 4 * static_cast<long>(list_.size()) + 64) {
                 for (int id : list_) visit(id);
                 return;
             }
-            for (long i = ci - k; i <= ci + k; ++i)
-                for (long j = cj - k; j <= cj + k; ++j) {
-                    if (std::max(std::abs(i - ci), std::abs(j - cj)) != k) continue;
-                    auto it = cells_.find(pack(i, j));
-                    if (it == cells_.end()) continue;
-                    for (int id : it->second) visit(id);
-                }
-            if (stop(k * cell_)) return;
+            grid_.visit_ring(p, k, visit);
+            if (stop(k * grid_.cell())) return;
         }
     }
 
 private:
-    long idx(double v) const { return static_cast<long>(std::floor(v / cell_)); }
-    static std::uint64_t pack(long i, long j) { return (std::uint64_t(i) << 32) ^ std::uint64_t(j & 0xffffffff); }
-    std::uint64_t key(const Vec3& p) const { return pack(idx(p.x), idx(p.y)); }
-
-    double cell_;
-    std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+    XyGrid<int> grid_;
     std::unordered_map<int, size_t> pos_;
     std::vector<int> list_;
 };
@@ -95,7 +82,7 @@ struct Candidate {
 class Sweep {
 public:
     Sweep(const ModelQuery& model, const Params& p)
-        : model_(model), p_(p), tan_c_(std::tan(p.critical_angle * kDeg)), fan_(cone_fan(p.critical_angle)),
+        : model_(model), p_(p), tan_c_(std::tan(deg_to_rad(p.critical_angle))), fan_(cone_fan(p.critical_angle)),
           grid_(std::max(2.0 * p.sampling_distance, 1.0)) {
         vertical_only_.assign(fan_.size(), 0);
         vertical_only_[0] = 1;
@@ -256,7 +243,7 @@ private:
     // its tip would dig into the wall.
     bool can_stand_on(std::size_t face) const {
         const Mesh& m = model_.mesh();
-        return normalized(face_normal_unnormalized(m, m.faces[face])).z >= std::cos(M_PI / 4);
+        return normalized(face_normal_unnormalized(m, m.faces[face])).z >= std::cos(deg_to_rad(45));
     }
 
     bool in_cone(const Vec3& apex, const Vec3& q) const {
@@ -569,7 +556,7 @@ double SupportTree::total_length() const {
 double touching_space(const Params& p) { return 2 * p.gap + p.layer_height; }
 
 double contact_tolerance(const Params& p) {
-    double steepest = std::tan((90 - p.critical_angle) * kDeg);  // slope of the steepest overhang
+    double steepest = std::tan(deg_to_rad(90 - p.critical_angle));  // slope of the steepest overhang
     return p.gap + 0.5 * p.tip_diameter * steepest + 0.05;
 }
 
