@@ -159,7 +159,7 @@ std::string provenance(const Job& job, const ScadMeta& meta) {
     return s + "\n";
 }
 
-std::string tree_data(const Supports& sp, const Params& p) {
+std::string tree_data(const Supports& sp) {
     const SupportTree& t = sp.sized.tree;
     Rows nodes, struts, leaves, contacts, beds, pillars;
     for (size_t i = 0; i < t.nodes.size(); ++i) nodes.push_back({std::to_string(i) + " " + kind_name(t.nodes[i].kind), pt(t.nodes[i].p)});
@@ -172,7 +172,7 @@ std::string tree_data(const Supports& sp, const Params& p) {
         if (n.kind == NodeKind::Leaf)
             leaves.push_back({id, fmt::format("[{}, {}, {}]", i, pt(n.contact), num(n.contact.z - n.tip.z))});
         else if (n.kind == NodeKind::ModelContact) {
-            if (auto bottom = contact_tip_bottom(n, p)) contacts.push_back({id, fmt::format("[{}, {}]", i, pt(*bottom))});
+            if (const auto& bottom = sp.sized.contact_tip[i]) contacts.push_back({id, fmt::format("[{}, {}]", i, pt(*bottom))});
         } else if (n.kind == NodeKind::Bed)
             beds.push_back({id, fmt::format("[{}, {}]", i, std::isfinite(n.room) ? num(n.room) : std::string("1e9"))});
     }
@@ -186,7 +186,7 @@ std::string tree_data(const Supports& sp, const Params& p) {
     s += "// [contact node, [x, y, z] bottom of its tip, a gap above the model]\n" + record_list("cs_contacts", contacts);
     s += "// [bed node, room: horizontal distance to the model, which limits its foot]\n" + record_list("cs_beds", beds);
     s += "// [[x, y, z] top, [x, y, z] bottom]: too short for a tree, d_min up to a tip\n" + record_list("cs_pillars", pillars);
-    s += "// How far a strut reaches into the joint below it (mm)\ncs_overlap = " + num(joint_overlap(p)) + ";\n";
+    s += "// How far a strut reaches into the joint below it (mm)\ncs_overlap = " + num(sp.sized.overlap) + ";\n";
     s += "cs_tree_record = [cs_nodes, cs_struts, cs_leaves, cs_contacts, cs_beds, cs_pillars, cs_overlap];\n\n";
     return s;
 }
@@ -221,7 +221,7 @@ std::string emit_scad(const Supports& sp, const Job& job, const ScadMeta& meta) 
     s += manual_edits(edits);
     s += regrow_section(job.params);
     s += provenance(job, meta);
-    s += tree_data(sp, job.params);
+    s += tree_data(sp);
     s += "include <clever_support.scad>\n\n";
     s += "union() {\n";
     s += "    if (show_model) color(\"lightgray\") import(cs_model_file, convexity = 10);\n";
