@@ -12,16 +12,15 @@
 namespace cs {
 
 bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance,
-                    bool onto_model) {
+                    bool onto_model, double joint_reach) {
     if (model.segment_hits(a, b)) return false;
     // The strut's own edges, and the same pushed out by the clearance (a bump of the model can
     // slip between the outer lines and still cut the strut, so both are asked).
     for (double c : {0.0, clearance}) {
         if (c == clearance && c == 0.0 && clearance != 0.0) continue;
         double ra = 0.5 * wa + c, rb = 0.5 * wb + c;
-        // The built strut reaches a little past b into its joint (half a layer; 0.25 mm covers
-        // any layer height): onto the model, that end must stay clear too.
-        const Vec3 b_end = onto_model && c == 0.0 ? b + normalized(b - a) * 0.25 : b;
+        // The built strut reaches past b into its joint: onto the model, that end must stay clear too.
+        const Vec3 b_end = onto_model && c == 0.0 ? b + normalized(b - a) * joint_reach : b;
         for (auto [sx, sy] : {std::pair{1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
             Vec3 ea = a + Vec3{sx * ra, sy * ra, 0}, eb = b_end + Vec3{sx * rb, sy * rb, 0};
             if (model.segment_hits(ea, eb)) return false;
@@ -31,7 +30,7 @@ bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec
     if (onto_model) {
         // The strut's foot hangs a tip's length above the model: a ridge of the model can rise
         // between its edges into the foot's square. Spokes across the square catch it.
-        const Vec3 foot = b + normalized(b - a) * 0.25;
+        const Vec3 foot = b + normalized(b - a) * joint_reach;
         const double r = 0.5 * wb;
         for (auto [sx, sy] : {std::pair{1, 1}, {1, -1}, {-1, 1}, {-1, -1}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}})
             if (model.segment_hits(foot, foot + Vec3{sx * r, sy * r, 0})) return false;

@@ -18,9 +18,10 @@ struct ConeFan;
 // Checks the axis and the four edges of its square envelope (widened by the clearance), and
 // balls along the axis that contain its cross-section.
 // `onto_model`: b is a contact node a tip's length above the model, where only the edges judge;
-// the strut then reaches `overlap` past b into its joint, and that end must stay clear too.
+// the built strut then reaches `joint_reach` (joint_overlap, half a layer) past b into its
+// contact tip, and that end must stay clear too.
 bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance,
-                    bool onto_model = false);
+                    bool onto_model = false, double joint_reach = 0);
 
 // Does a strut from a down to b (width wb at b), reaching half a layer into its joint, or its
 // foot on the bed enter one of the user's support blockers (p.keep_out)?

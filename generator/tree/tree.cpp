@@ -159,7 +159,7 @@ private:
     bool clear(int from, const Vec3& to, double clearance = -1, bool onto_model = false) const {
         return !enters_keep_out(p_, t_.nodes[from].p, to, bottom_width(from, to)) &&
                strut_is_clear(model_, t_.nodes[from].p, top_width(from, to), to, bottom_width(from, to),
-                              clearance < 0 ? p_.model_clearance : clearance, onto_model);
+                              clearance < 0 ? p_.model_clearance : clearance, onto_model, joint_overlap(p_));
     }
     bool can_escape(const Vec3& a, double w) const { return cs::can_escape(model_, p_, fan_, a, w); }
     bool clear(int from, const Candidate& c, double clearance = -1) const {
