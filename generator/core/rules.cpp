@@ -17,6 +17,14 @@ double min_n_width(const Params& p) { return 3 * p.wall_thickness; }
 
 double joint_overlap(const Params& p) { return 0.5 * p.layer_height; }
 
+TipEnds leaf_tip(const Params& p, const Vec3& node, const Vec3& tip_top, double strut_width) {
+    return {node - Vec3{0, 0, joint_overlap(p)}, tip_top, strut_width, p.tip_diameter};
+}
+
+TipEnds contact_tip(const Params& p, const Vec3& tip_bottom, const Vec3& node, double strut_width) {
+    return {tip_bottom, node, p.tip_diameter, strut_width};
+}
+
 double touching_space(const Params& p) { return 2 * p.gap + p.layer_height; }
 
 double contact_tolerance(const Params& p) {

@@ -57,6 +57,22 @@ double touching_space(const Params& p);
 // a tip's square top needs under the steepest overhang that needs support.
 double contact_tolerance(const Params& p);
 
+// A tip, under an overhang sample (leaf_tip) or standing on the model (contact_tip), is ONE square
+// taper between its strut's end (the strut's width) and the contact (tip_diameter wide), along
+// the straight line that placement tested for clearance (struts/placement.hpp: clear_tip_foot,
+// prism_is_clear). A leaf's tip starts joint_overlap down inside its strut's top. The template's
+// cs_tip and cs_contact_tip build the same solid from the same points.
+struct TipEnds {
+    Vec3 bottom, top;
+    double bottom_width = 0, top_width = 0;
+};
+// `node`: the leaf; `tip_top`: where placement put the tip's top; `strut_width`: the top width of
+// the strut leaving the leaf.
+TipEnds leaf_tip(const Params& p, const Vec3& node, const Vec3& tip_top, double strut_width);
+// `tip_bottom`: a gap above the model; `node`: the contact node; `strut_width`: the bottom width
+// of the strut ending there.
+TipEnds contact_tip(const Params& p, const Vec3& tip_bottom, const Vec3& node, double strut_width);
+
 // The lowest a contact tip's bottom may come to the top of its node and still be built: a tip
 // shorter than this (a node already on the model's gap) is left out.
 constexpr double kShortestContactTip = 0.01;

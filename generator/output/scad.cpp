@@ -170,7 +170,7 @@ std::string tree_data(const Supports& sp) {
         const Node& n = t.nodes[i];
         const std::string id = std::to_string(i);
         if (n.kind == NodeKind::Leaf)
-            leaves.push_back({id, fmt::format("[{}, {}, {}]", i, pt(n.contact), num(n.contact.z - n.tip.z))});
+            leaves.push_back({id, fmt::format("[{}, {}, {}]", i, pt(n.contact), pt(n.tip))});
         else if (n.kind == NodeKind::ModelContact) {
             if (const auto& bottom = sp.sized.contact_tip[i]) contacts.push_back({id, fmt::format("[{}, {}]", i, pt(*bottom))});
         } else if (n.kind == NodeKind::Bed)
@@ -182,7 +182,7 @@ std::string tree_data(const Supports& sp) {
     std::string s = "// The tree. Node kinds (comments) are derived by the library from the lists below.\n";
     s += "// [x, y, z] of every node\n" + record_list("cs_nodes", nodes);
     s += "// [top node, bottom node]: widths, runs and levels follow from the tree\n" + record_list("cs_struts", struts);
-    s += "// [leaf node, [x, y, z] overhang sample above it, how far below the sample its tip ends]\n" + record_list("cs_leaves", leaves);
+    s += "// [leaf node, [x, y, z] overhang sample above it, [x, y, z] top of its tip]\n" + record_list("cs_leaves", leaves);
     s += "// [contact node, [x, y, z] bottom of its tip, a gap above the model]\n" + record_list("cs_contacts", contacts);
     s += "// [bed node, room: horizontal distance to the model, which limits its foot]\n" + record_list("cs_beds", beds);
     s += "// [[x, y, z] top, [x, y, z] bottom]: too short for a tree, d_min up to a tip\n" + record_list("cs_pillars", pillars);

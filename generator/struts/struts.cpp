@@ -144,12 +144,13 @@ std::vector<Body> build_bodies(const SizedTree& sized, const Params& p) {
     for (size_t v = 0; v < nodes.size(); ++v) {
         const Node& nd = nodes[v];
         if (nd.kind == NodeKind::Leaf) {
-            const Vec3& top = nd.tip;
-            bodies.push_back({BodyKind::Tip, Profile::Square, nd.p - Vec3{0, 0, overlap}, top, outgoing_width(v),
-                              p.tip_diameter});
+            const TipEnds t = leaf_tip(p, nd.p, nd.tip, outgoing_width(v));
+            bodies.push_back({BodyKind::Tip, Profile::Square, t.bottom, t.top, t.bottom_width, t.top_width});
         } else if (nd.kind == NodeKind::ModelContact) {
-            if (const auto& bottom = sized.contact_tip[v])
-                bodies.push_back({BodyKind::ContactTip, Profile::Square, *bottom, nd.p, p.tip_diameter, incoming_width(v)});
+            if (const auto& bottom = sized.contact_tip[v]) {
+                const TipEnds t = contact_tip(p, *bottom, nd.p, incoming_width(v));
+                bodies.push_back({BodyKind::ContactTip, Profile::Square, t.bottom, t.top, t.bottom_width, t.top_width});
+            }
         } else if (nd.kind == NodeKind::Bed && p.feet && p.foot_height > 0 && !sized.in_struts[v].empty()) {
             const Vec3& above = nodes[sized.tree.struts[sized.in_struts[v].back()].top].p;
             Vec3 top = foot_top(nd.p, above, p);
