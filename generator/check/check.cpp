@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "check/judge_overhangs.hpp"
 #include "core/xy_grid.hpp"
