@@ -2,17 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
-#include <unordered_map>
 
 #include "check/judge_overhangs.hpp"
+#include "core/xy_grid.hpp"
 #include "mesh/repair.hpp"
 #include "query/model_query.hpp"
 
 namespace cs {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180;
 constexpr std::size_t kMaxFlags = 12;
 // Below this height a solid stands on the bed (slicers start at z = 0; half a tenth of a layer).
 constexpr double kOnBed = 0.05;
@@ -38,7 +36,7 @@ Tolerances tolerances(const Params& p, const CheckOptions& o) {
     Tolerances t{};
     t.reach = o.reach > 0 ? o.reach : CheckOptions::kLatticeReach * p.sampling_distance;
     t.spacing = o.spacing > 0 ? o.spacing : std::min(0.5, t.reach / 3);
-    t.rise = t.reach * std::tan((90 - p.critical_angle) * kDeg) + p.layer_height;
+    t.rise = t.reach * std::tan(deg_to_rad(90 - p.critical_angle)) + p.layer_height;
     t.bridge_height = 2 * p.gap + p.layer_height;
     t.gap_min = p.gap - o.gap_tolerance;
     t.contact_slack = p.layer_height;
@@ -272,64 +270,46 @@ void check_grounding(const ModelQuery& q, const std::vector<Shell>& shells, cons
     for (size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return shells[a].zmin < shells[b].zmin; });
     std::vector<char> grounded(shells.size(), 0);
-    const double cell = 4.0;
-    std::unordered_map<std::uint64_t, std::vector<size_t>> by_cell;
-    auto key = [](long i, long j) { return (std::uint64_t(i) << 32) ^ std::uint64_t(j & 0xffffffff); };
-    auto idx = [&](double v) { return static_cast<long>(std::floor(v / cell)); };
+    XyGrid<size_t> by_cell(4.0);  // every solid, in each cell its bounding box spans
     for (size_t i : order) {
         const Shell& s = shells[i];
         if (s.zmin > kOnBed && q.inside(s.bottom) && std::sqrt(q.squared_distance(s.bottom)) > t.penetration) {
             ++r.buried_bottoms;
             flag(r, solid_name(s) + " starts inside the model", s.bottom);
         }
-        bool ok = s.zmin <= kOnBed || s.bottom_on_model;
-        for (long a = idx(s.bottom.x) - 1; a <= idx(s.bottom.x) + 1 && !ok; ++a)
-            for (long b = idx(s.bottom.y) - 1; b <= idx(s.bottom.y) + 1 && !ok; ++b) {
-                auto it = by_cell.find(key(a, b));
-                if (it == by_cell.end()) continue;
-                for (size_t j : it->second)
-                    if (grounded[j] && contains(shells[j], s.bottom, 0.05)) { ok = true; break; }
-            }
+        bool ok = s.zmin <= kOnBed || s.bottom_on_model ||
+                  by_cell.visit_near(s.bottom, 1, [&](size_t j) { return grounded[j] && contains(shells[j], s.bottom, 0.05); });
         grounded[i] = ok;
         if (!ok) {
             ++r.ungrounded_bodies;
             flag(r, solid_name(s) + " rests on nothing", s.bottom);
         }
         Box3 bb = bounding_box(s.mesh);
-        for (long a = idx(bb.min.x); a <= idx(bb.max.x); ++a)
-            for (long c = idx(bb.min.y); c <= idx(bb.max.y); ++c) by_cell[key(a, c)].push_back(i);
+        for (long a = by_cell.index(bb.min.x); a <= by_cell.index(bb.max.x); ++a)
+            for (long c = by_cell.index(bb.min.y); c <= by_cell.index(bb.max.y); ++c) by_cell.insert_at(a, c, i);
     }
 }
 
-// Points in cells of an XY grid, for "nearest within the same surface" questions.
+// Points in an XY grid, for "nearest within the same surface" questions.
 class NearGrid {
 public:
-    explicit NearGrid(double cell) : cell_(cell) {}
-    void add(const Vec3& p) { cells_[key(idx(p.x), idx(p.y))].push_back(p); }
+    explicit NearGrid(double cell) : grid_(cell) {}
+    void add(const Vec3& p) { grid_.insert(p, p); }
     // Horizontal distance to the nearest point with |dz| <= rise, searching out to `limit`.
     double nearest(const Vec3& p, double rise, double limit) const {
         double best = INFINITY;
-        const long ci = idx(p.x), cj = idx(p.y);
-        const long rings = static_cast<long>(std::ceil(limit / cell_)) + 1;
+        const long rings = static_cast<long>(std::ceil(limit / grid_.cell())) + 1;
         for (long k = 0; k <= rings; ++k) {
-            for (long i = ci - k; i <= ci + k; ++i)
-                for (long j = cj - k; j <= cj + k; ++j) {
-                    if (std::max(std::abs(i - ci), std::abs(j - cj)) != k) continue;
-                    auto it = cells_.find(key(i, j));
-                    if (it == cells_.end()) continue;
-                    for (const auto& q : it->second)
-                        if (std::abs(q.z - p.z) <= rise) best = std::min(best, horizontal_distance(p, q));
-                }
-            if (best <= k * cell_) break;  // every unvisited cell is farther than k cells
+            grid_.visit_ring(p, k, [&](const Vec3& q) {
+                if (std::abs(q.z - p.z) <= rise) best = std::min(best, horizontal_distance(p, q));
+            });
+            if (best <= k * grid_.cell()) break;  // every unvisited cell is farther than k cells
         }
         return best;
     }
 
 private:
-    static std::uint64_t key(long i, long j) { return (std::uint64_t(i) << 32) ^ std::uint64_t(j & 0xffffffff); }
-    long idx(double v) const { return static_cast<long>(std::floor(v / cell_)); }
-    double cell_;
-    std::unordered_map<std::uint64_t, std::vector<Vec3>> cells_;
+    XyGrid<Vec3> grid_;
 };
 
 void check_coverage(const Mesh& model, const ModelQuery& q, const std::vector<Shell>& shells, const Params& p,

@@ -3,12 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numbers>
 
 namespace cs {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180;
 
 using EdgeKey = std::pair<std::uint32_t, std::uint32_t>;
 
@@ -71,8 +69,8 @@ void sample_overhang_faces(const Mesh& m, const std::vector<char>& overhang, dou
 
 JudgeOverhangs judge_overhangs(const Mesh& m, double critical_angle_deg, double bed_z, double spacing) {
     JudgeOverhangs out;
-    const double overhang_nz = -std::sin(critical_angle_deg * kDeg);
-    const double line_ez = std::cos(critical_angle_deg * kDeg);  // a line flatter than this hangs
+    const double overhang_nz = -std::sin(deg_to_rad(critical_angle_deg));
+    const double line_ez = std::cos(deg_to_rad(critical_angle_deg));  // a line flatter than this hangs
 
     std::vector<char> overhang(m.faces.size(), 0);
     std::vector<Vec3> normal(m.faces.size());

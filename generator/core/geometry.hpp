@@ -7,6 +7,7 @@
 #include <utility>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <vector>
 
 namespace cs {
@@ -35,10 +36,16 @@ inline Vec3 normalized(const Vec3& a) {
 inline double distance(const Vec3& a, const Vec3& b) { return norm(a - b); }
 inline double horizontal_distance(const Vec3& a, const Vec3& b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
+// Degrees to radians and back: parameters and reports speak degrees, <cmath> radians. Written
+// as `deg * pi / 180` (not `deg * (pi / 180)`): the two differ in the last bit for some angles,
+// and every stage converts the same way so a threshold means the same everywhere.
+inline double deg_to_rad(double deg) { return deg * std::numbers::pi / 180.0; }
+inline double rad_to_deg(double rad) { return rad * 180.0 / std::numbers::pi; }
+
 // Angle of the segment a-b from vertical, in degrees (0 = vertical).
 inline double angle_from_vertical_deg(const Vec3& a, const Vec3& b) {
     double h = horizontal_distance(a, b), v = std::abs(a.z - b.z);
-    return std::atan2(h, v) * 180.0 / M_PI;
+    return rad_to_deg(std::atan2(h, v));
 }
 
 using Triangle = std::array<std::uint32_t, 3>;

@@ -355,10 +355,9 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
 }
 
 void rotation_from_euler_deg(double rx, double ry, double rz, double out[3][3]) {
-    auto rad = [](double d) { return d * M_PI / 180.0; };
-    double cx = std::cos(rad(rx)), sx = std::sin(rad(rx));
-    double cy = std::cos(rad(ry)), sy = std::sin(rad(ry));
-    double cz = std::cos(rad(rz)), sz = std::sin(rad(rz));
+    double cx = std::cos(deg_to_rad(rx)), sx = std::sin(deg_to_rad(rx));
+    double cy = std::cos(deg_to_rad(ry)), sy = std::sin(deg_to_rad(ry));
+    double cz = std::cos(deg_to_rad(rz)), sz = std::sin(deg_to_rad(rz));
     // R = Rz * Ry * Rx
     double R[3][3] = {{cz * cy, cz * sy * sx - sz * cx, cz * sy * cx + sz * sx},
                       {sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx},

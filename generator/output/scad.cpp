@@ -151,7 +151,7 @@ std::string provenance(const Job& job, const ScadMeta& meta) {
     return s + "\n";
 }
 
-std::string tree_data(const Supports& sp, const Params& p) {
+std::string tree_data(const Supports& sp) {
     const SupportTree& t = sp.sized.tree;
     Rows nodes, struts, leaves, contacts, beds, pillars;
     for (size_t i = 0; i < t.nodes.size(); ++i) nodes.push_back({std::to_string(i) + " " + kind_name(t.nodes[i].kind), pt(t.nodes[i].p)});
@@ -162,9 +162,9 @@ std::string tree_data(const Supports& sp, const Params& p) {
         const Node& n = t.nodes[i];
         const std::string id = std::to_string(i);
         if (n.kind == NodeKind::Leaf)
-            leaves.push_back({id, fmt::format("[{}, {}, {}]", i, pt(n.contact), num(n.contact.z - n.tip.z))});
+            leaves.push_back({id, fmt::format("[{}, {}, {}]", i, pt(n.contact), pt(n.tip))});
         else if (n.kind == NodeKind::ModelContact) {
-            if (auto bottom = contact_tip_bottom(n, p)) contacts.push_back({id, fmt::format("[{}, {}]", i, pt(*bottom))});
+            if (const auto& bottom = sp.sized.contact_tip[i]) contacts.push_back({id, fmt::format("[{}, {}]", i, pt(*bottom))});
         } else if (n.kind == NodeKind::Bed)
             beds.push_back({id, fmt::format("[{}, {}]", i, std::isfinite(n.room) ? num(n.room) : std::string("1e9"))});
     }
@@ -174,11 +174,11 @@ std::string tree_data(const Supports& sp, const Params& p) {
     std::string s = "// The tree. Node kinds (comments) are derived by the library from the lists below.\n";
     s += "// [x, y, z] of every node\n" + record_list("cs_nodes", nodes);
     s += "// [top node, bottom node]: widths, runs and levels follow from the tree\n" + record_list("cs_struts", struts);
-    s += "// [leaf node, [x, y, z] overhang sample above it, how far below the sample its tip ends]\n" + record_list("cs_leaves", leaves);
+    s += "// [leaf node, [x, y, z] overhang sample above it, [x, y, z] top of its tip]\n" + record_list("cs_leaves", leaves);
     s += "// [contact node, [x, y, z] bottom of its tip, a gap above the model]\n" + record_list("cs_contacts", contacts);
     s += "// [bed node, room: horizontal distance to the model, which limits its foot]\n" + record_list("cs_beds", beds);
     s += "// [[x, y, z] top, [x, y, z] bottom]: too short for a tree, d_min up to a tip\n" + record_list("cs_pillars", pillars);
-    s += "// How far a strut reaches into the joint below it (mm)\ncs_overlap = " + num(joint_overlap(p)) + ";\n";
+    s += "// How far a strut reaches into the joint below it (mm)\ncs_overlap = " + num(sp.sized.overlap) + ";\n";
     s += "cs_tree_record = [cs_nodes, cs_struts, cs_leaves, cs_contacts, cs_beds, cs_pillars, cs_overlap];\n\n";
     return s;
 }
@@ -213,7 +213,7 @@ std::string emit_scad(const Supports& sp, const Job& job, const ScadMeta& meta) 
     s += manual_edits(edits);
     s += regrow_section(job.params);
     s += provenance(job, meta);
-    s += tree_data(sp, job.params);
+    s += tree_data(sp);
     s += "include <clever_support.scad>\n\n";
     s += "union() {\n";
     s += "    if (show_model) color(\"lightgray\") import(cs_model_file, convexity = 10);\n";

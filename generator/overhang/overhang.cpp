@@ -5,6 +5,7 @@
 #include <numbers>
 #include <unordered_map>
 
+#include "core/xy_grid.hpp"
 #include "query/model_query.hpp"
 
 namespace cs {
@@ -28,32 +29,21 @@ bool owns_edge_points(const Vec3& u, const Vec3& v) {
     return dy < 0 || (dy == 0 && dx > 0);
 }
 
-// XY hash grid of points that cover overhang points around them (samples, anchors), for the
-// coverage rule of `covers`.
+// Points that cover overhang points around them (samples, anchors), filed in an XY grid with
+// cells one reach wide: every coverer of x lies in x's cell or the eight around it.
 class CoverGrid {
 public:
-    CoverGrid(double reach, double critical_angle) : reach_(reach), angle_(critical_angle) {}
+    CoverGrid(double reach, double critical_angle) : grid_(reach), reach_(reach), angle_(critical_angle) {}
 
-    void add(const Vec3& p) { cells_[key(idx(p.x), idx(p.y))].push_back(p); }
+    void add(const Vec3& p) { grid_.insert(p, p); }
     // `above`: how much higher than x a coverer may lie at most (beyond the surface rule).
     bool covered(const Vec3& x, double above = INFINITY) const {
-        long i = idx(x.x), j = idx(x.y);
-        for (long a = i - 1; a <= i + 1; ++a)
-            for (long b = j - 1; b <= j + 1; ++b) {
-                auto it = cells_.find(key(a, b));
-                if (it == cells_.end()) continue;
-                for (const auto& q : it->second)
-                    if (q.z <= x.z + above && covers(q, x, reach_, angle_)) return true;
-            }
-        return false;
+        return grid_.visit_near(x, 1, [&](const Vec3& q) { return q.z <= x.z + above && covers(q, x, reach_, angle_); });
     }
 
 private:
-    static std::uint64_t key(long i, long j) { return (std::uint64_t(i) << 32) ^ std::uint64_t(j & 0xffffffff); }
-    long idx(double v) const { return static_cast<long>(std::floor(v / reach_)); }
-
+    XyGrid<Vec3> grid_;
     double reach_, angle_;
-    std::unordered_map<std::uint64_t, std::vector<Vec3>> cells_;
 };
 
 std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
@@ -128,7 +118,7 @@ std::vector<EdgeSegment> support_edges(const Mesh& m, const std::vector<char>& c
     keys.reserve(edge_faces.size());
     for (const auto& kv : edge_faces) keys.push_back(kv.first);
     std::sort(keys.begin(), keys.end());  // deterministic order
-    const double sin_c = std::sin(o.critical_angle * M_PI / 180.0);
+    const double sin_c = std::sin(deg_to_rad(o.critical_angle));
     std::vector<EdgeSegment> out;
     for (auto key : keys) {
         const auto& fs = edge_faces[key];
@@ -212,7 +202,7 @@ std::vector<Vec3> edge_points(const EdgeSegment& e, double reach) {
 double coverage_reach(double sampling_distance) { return std::sqrt(0.5) * sampling_distance; }
 
 bool covers(const Vec3& sample, const Vec3& x, double reach, double critical_angle_deg) {
-    const double rise = reach * std::tan((90 - critical_angle_deg) * M_PI / 180.0);
+    const double rise = reach * std::tan(deg_to_rad(90 - critical_angle_deg));
     return horizontal_distance(sample, x) <= reach && std::abs(sample.z - x.z) <= rise;
 }
 
@@ -225,7 +215,7 @@ bool rests_on_material(const ModelQuery& model, const Vec3& x, double touching_s
 
 
 bool needs_support(const Vec3& n, double critical_angle_deg) {
-    return n.z < -std::sin(critical_angle_deg * M_PI / 180.0);
+    return n.z < -std::sin(deg_to_rad(critical_angle_deg));
 }
 
 std::vector<char> classify_faces(const Mesh& m, const OverhangOptions& o) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <optional>
 
 #include "query/model_query.hpp"
@@ -23,7 +24,7 @@ const std::vector<Vec3>& nearby_offsets() {
     static const std::vector<Vec3> offsets = [] {
         std::vector<Vec3> out{{0, 0, 0}};
         for (double r : {0.5 * kMaxShift, kMaxShift})
-            for (int i = 0; i < 8; ++i) out.push_back({r * std::cos(i * M_PI / 4), r * std::sin(i * M_PI / 4), 0});
+            for (int i = 0; i < 8; ++i) out.push_back({r * std::cos(i * std::numbers::pi / 4), r * std::sin(i * std::numbers::pi / 4), 0});
         return out;
     }();
     return offsets;
@@ -140,7 +141,7 @@ Attempt pillar_at(const ModelQuery& model, const Vec3& sample, const Vec3& centr
 }  // namespace
 
 std::optional<Vec3> clear_tip_foot(const ModelQuery& model, const Vec3& foot, const Vec3& top, const Params& p) {
-    const double max_slant = 0.9 * std::tan(p.critical_angle * M_PI / 180) * (top.z - foot.z);
+    const double max_slant = 0.9 * std::tan(deg_to_rad(p.critical_angle)) * (top.z - foot.z);
     for (const auto& off : nearby_offsets()) {
         const Vec3 c = foot + off;
         if (horizontal_distance(c, top) > max_slant) continue;

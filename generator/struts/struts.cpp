@@ -36,9 +36,15 @@ Profile2D profile_of(Profile kind, double d, double wall) {
     return kind == Profile::N ? n_profile(d, wall) : square_profile(d);
 }
 
-}  // namespace
+// Where the upside-down tip under a model-contact node ends (a gap above the model), or nothing
+// when the node is too close to the model for a tip.
+std::optional<Vec3> contact_tip_bottom(const Node& contact, const Params& p) {
+    Vec3 bottom = contact.contact + Vec3{0, 0, p.gap};
+    if (contact.p.z - bottom.z <= kShortestContactTip) return std::nullopt;
+    return bottom;
+}
 
-double min_n_width(const Params& p) { return 3 * p.wall_thickness; }
+}  // namespace
 
 Vec3 foot_top(const Vec3& bed_point, const Vec3& above, const Params& p) {
     // At most half-way up its strut, so the foot never ends where the strut begins.
@@ -58,13 +64,18 @@ SizedTree size_struts(SupportTree tree, const Params& p) {
     const auto& nodes = tree.nodes;
     const auto& struts = tree.struts;
     const size_t n = nodes.size();
-    std::vector<int> out(n, -1), in_count(n, 0);
-    std::vector<std::vector<int>> in(n);
+    s.out_strut.assign(n, -1);
+    s.in_struts.assign(n, {});
+    auto& out = s.out_strut;
+    auto& in = s.in_struts;
     for (size_t e = 0; e < struts.size(); ++e) {
         out[struts[e].top] = static_cast<int>(e);
         in[struts[e].bottom].push_back(static_cast<int>(e));
-        ++in_count[struts[e].bottom];
     }
+    s.contact_tip.assign(n, std::nullopt);
+    for (size_t v = 0; v < n; ++v)
+        if (nodes[v].kind == NodeKind::ModelContact) s.contact_tip[v] = contact_tip_bottom(nodes[v], p);
+    s.overlap = joint_overlap(p);
     s.struts.resize(struts.size());
     for (size_t e = 0; e < struts.size(); ++e) {
         const Vec3 &a = nodes[struts[e].top].p, &b = nodes[struts[e].bottom].p;
@@ -72,7 +83,7 @@ SizedTree size_struts(SupportTree tree, const Params& p) {
         s.struts[e].angle = angle_from_vertical_deg(a, b);
     }
     // Runs: a node with one strut in and one out that is not a leaf is a bend in one column.
-    auto is_bend = [&](int v) { return in_count[v] == 1 && out[v] >= 0 && nodes[v].kind != NodeKind::Leaf; };
+    auto is_bend = [&](int v) { return in[v].size() == 1 && out[v] >= 0 && nodes[v].kind != NodeKind::Leaf; };
     for (size_t e = 0; e < struts.size(); ++e) {
         if (is_bend(struts[e].top)) continue;  // not the head of its run
         std::vector<int> run{static_cast<int>(e)};
@@ -96,30 +107,25 @@ SizedTree size_struts(SupportTree tree, const Params& p) {
         auto& st = s.struts[out[v]];
         double need = strength_width(p, st.run_length, st.run_angle);
         if (need > p.d_max) ++s.strength_violations;
-        st.top_width = std::clamp(std::max(s.node_width[v], need), p.d_min, p.d_max);
-        st.bottom_width = std::max(st.top_width, eqn1_width(p, st.length, st.angle));
+        const EndWidths w = strut_end_widths(p, s.node_width[v], st.run_length, st.run_angle, st.length, st.angle);
+        st.top_width = w.top;
+        st.bottom_width = w.bottom;
         s.worst_length_to_width = std::max(s.worst_length_to_width, st.run_length / st.top_width);
     }
     s.tree = std::move(tree);
     return s;
 }
 
-double joint_overlap(const Params& p) { return 0.5 * p.layer_height; }
-
-std::optional<Vec3> contact_tip_bottom(const Node& contact, const Params& p) {
-    Vec3 bottom = contact.contact + Vec3{0, 0, p.gap};
-    if (contact.p.z - bottom.z <= 0.01) return std::nullopt;
-    return bottom;
-}
-
 std::vector<Body> build_bodies(const SizedTree& sized, const Params& p) {
     std::vector<Body> bodies;
     const auto& nodes = sized.tree.nodes;
-    const double overlap = joint_overlap(p);
+    const double overlap = sized.overlap;
     auto profile = [&](double w0, double w1) { return std::min(w0, w1) >= min_n_width(p) ? Profile::N : Profile::Square; };
-    std::vector<double> incoming_width(nodes.size(), p.d_min);
-    std::vector<const Vec3*> incoming_top(nodes.size(), nullptr);
-    std::vector<double> outgoing_width(nodes.size(), p.d_min);
+    // The width of the last strut into a node at its bottom, and of the strut out of it at its top.
+    auto incoming_width = [&](size_t v) {
+        return sized.in_struts[v].empty() ? p.d_min : sized.struts[sized.in_struts[v].back()].bottom_width;
+    };
+    auto outgoing_width = [&](size_t v) { return sized.out_strut[v] < 0 ? p.d_min : sized.struts[sized.out_strut[v]].top_width; };
 
     for (size_t e = 0; e < sized.tree.struts.size(); ++e) {
         const auto& st = sized.tree.struts[e];
@@ -134,22 +140,21 @@ std::vector<Body> build_bodies(const SizedTree& sized, const Params& p) {
         }
         bodies.push_back({BodyKind::Strut, profile(sz.top_width, sz.bottom_width), bottom, top, sz.bottom_width,
                           sz.top_width});
-        incoming_width[st.bottom] = sz.bottom_width;
-        outgoing_width[st.top] = sz.top_width;
-        incoming_top[st.bottom] = &nodes[st.top].p;
     }
     for (size_t v = 0; v < nodes.size(); ++v) {
         const Node& nd = nodes[v];
         if (nd.kind == NodeKind::Leaf) {
-            const Vec3& top = nd.tip;
-            bodies.push_back({BodyKind::Tip, Profile::Square, nd.p - Vec3{0, 0, overlap}, top, outgoing_width[v],
-                              p.tip_diameter});
+            const TipEnds t = leaf_tip(p, nd.p, nd.tip, outgoing_width(v));
+            bodies.push_back({BodyKind::Tip, Profile::Square, t.bottom, t.top, t.bottom_width, t.top_width});
         } else if (nd.kind == NodeKind::ModelContact) {
-            if (auto bottom = contact_tip_bottom(nd, p))
-                bodies.push_back({BodyKind::ContactTip, Profile::Square, *bottom, nd.p, p.tip_diameter, incoming_width[v]});
-        } else if (nd.kind == NodeKind::Bed && p.feet && p.foot_height > 0 && incoming_top[v]) {
-            Vec3 top = foot_top(nd.p, *incoming_top[v], p);
-            double w = incoming_width[v];
+            if (const auto& bottom = sized.contact_tip[v]) {
+                const TipEnds t = contact_tip(p, *bottom, nd.p, incoming_width(v));
+                bodies.push_back({BodyKind::ContactTip, Profile::Square, t.bottom, t.top, t.bottom_width, t.top_width});
+            }
+        } else if (nd.kind == NodeKind::Bed && p.feet && p.foot_height > 0 && !sized.in_struts[v].empty()) {
+            const Vec3& above = nodes[sized.tree.struts[sized.in_struts[v].back()].top].p;
+            Vec3 top = foot_top(nd.p, above, p);
+            double w = incoming_width(v);
             double extra = foot_extra(p, w, nd.room);
             if (extra > 0) bodies.push_back({BodyKind::Foot, Profile::Square, nd.p, top, w + 2 * extra, w});
         }

@@ -16,7 +16,10 @@
 
 #include "core/geometry.hpp"
 #include "core/params.hpp"
+#include "core/rules.hpp"
 #include "overhang/overhang.hpp"
+#include "tree/candidates.hpp"
+#include "tree/clearance.hpp"
 
 namespace cs {
 
@@ -70,30 +73,8 @@ struct SupportTree {
     double total_length() const;
 };
 
-// Free vertical space below an overhang under which no support is built: the overhang is printed
-// on what is below it (two z gaps and a layer).
-double touching_space(const Params& p);
-
-// How far below the model a tip's top may sit and still count as a contact: the z gap, plus what a
-// tip's square top needs under the steepest overhang that needs support.
-double contact_tolerance(const Params& p);
-
-// Highest point where the downward cones of apexes a and b meet (docs/algorithm.md section 3):
-// b itself when it lies in a's cone, else the top of the cones' intersection. a must not be lower
-// than b. tan_c = tan(critical angle).
-Vec3 merge_point(const Vec3& a, const Vec3& b, double tan_c);
-
-// Nearest model point inside the downward cone at `apex` that a straight strut can reach,
-// approximated by a fan of rays (the axis and two rings of eight). nullopt when the cone sees
-// only the bed.
-std::optional<Vec3> first_hit_in_cone(const ModelQuery& model, const Vec3& apex, double critical_angle_deg);
-
-// Is a strut from a (width wa) down to b (width wb) at least `clearance` away from the model?
-// Checks the axis and the four edges of its square envelope (widened by the clearance), and
-// balls along the axis that contain its cross-section.
-// `onto_model`: b is a contact node a tip's length above the model, where only the edges judge.
-bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance,
-                    bool onto_model = false);
+// touching_space and contact_tolerance: core/rules.hpp. merge_point and first_hit_in_cone:
+// tree/candidates.hpp. strut_is_clear: tree/clearance.hpp.
 
 // What a slicer spends printing a tree as a support mesh (CuraEngine with one support wall and no
 // infill, the route of shared/notes/slicer-handoff.md). On every layer each strut, tip and pillar
@@ -103,7 +84,7 @@ struct SlicerCost {
     double island_layers = 0;  // islands, summed over the layers
     double outline_mm = 0;     // outline drawn, summed over the layers
     double travel_mm = 0;      // travel between the islands of each layer, nearest island next
-    double seconds = 0;        // all three, priced by the constants in tree.cpp
+    double seconds = 0;        // all three, priced by kTreeTuning (tree/tuning.hpp)
     std::size_t most_islands = 0;  // islands in the busiest layer
 };
 
@@ -111,6 +92,8 @@ struct SlicerCost {
 SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>& strut_width, const Params& p);
 
 // Grows the support tree (or the columns baseline, by p.strategy) for the given samples.
+// The sweep (tree.cpp) keeps the books; tree/candidates.hpp finds where a node may go,
+// tree/clearance.hpp whether it fits, tree/tuning.hpp holds the search's constants.
 SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p);
 
 }  // namespace cs

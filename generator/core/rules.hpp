@@ -1,0 +1,80 @@
+// The geometric rules of the support, each named once: how wide a strut is, how far solids
+// overlap where they join, how much free space an overhang may print across, how far below the
+// model a tip still counts as a contact.
+//
+// The tree (tree/), the struts stage (struts/) and the SCAD emitter (output/scad.cpp) all ask
+// here, so the estimate the tree makes while growing, the solid the struts stage builds and the
+// data the .scad carries cannot drift apart. scad_templates/clever_support.scad implements the
+// same width rules in OpenSCAD (its header lists them); tests/e2e/test_scad_widths.cpp compares
+// the two strut by strut.
+//
+// `check/` does NOT use this header: it is the independent judge and keeps its own tolerances.
+//
+// Inputs are the user's Params; every result is in millimetres.
+#pragma once
+
+#include "core/params.hpp"
+
+namespace cs {
+
+// ----------------------------------------------------------------------------- strut widths
+//
+// The width formulas themselves sit in core/params.hpp until the parameter table there is
+// finished (they were declared with the parameters they read):
+//   eqn1_width(p, l, a)        the paper's Eqn (1), d = k * l * alpha, clamped to [d_min, d_max]
+//   strength_width(p, l, a)    the width a run of length l at angle a needs to stay stiff
+//   safe_length(p, d, a)       its inverse: how long a strut of width d may run
+//   merged_width(p, widths)    Murray's rule at a branch point, never below the widest, clamped
+// Everything below combines them; nothing else in the generator may.
+
+// The widths at the two ends of one strut.
+struct EndWidths {
+    double top = 0, bottom = 0;
+};
+
+// A strut leaving a node of width `node_width` (the width carried into it: d_min at a leaf)
+// down a run of `run_length` mm whose steepest strut is `run_angle_deg` from vertical; the strut
+// itself is `length` mm at `angle_deg`.
+//   top    = clamp(max(node width, strength rule for the run), d_min, d_max)
+//   bottom = max(top, Eqn 1 for the strut): struts never narrow going down.
+EndWidths strut_end_widths(const Params& p, double node_width, double run_length, double run_angle_deg, double length,
+                           double angle_deg);
+
+// Narrowest width at which an N-profile keeps open gaps between its three walls.
+double min_n_width(const Params& p);
+
+// ----------------------------------------------------------------------------- joints and contacts
+
+// How far a strut (or a tip) reaches into the solid below it, so joints overlap instead of
+// sharing a face: half a layer, enough for any slicer to fuse them on the layer they meet.
+double joint_overlap(const Params& p);
+
+// Free vertical space below an overhang under which no support is built: the overhang is printed
+// on what is below it (two z gaps and a layer).
+double touching_space(const Params& p);
+
+// How far below the model a tip's top may sit and still count as a contact: the z gap, plus what
+// a tip's square top needs under the steepest overhang that needs support.
+double contact_tolerance(const Params& p);
+
+// A tip, under an overhang sample (leaf_tip) or standing on the model (contact_tip), is ONE square
+// taper between its strut's end (the strut's width) and the contact (tip_diameter wide), along
+// the straight line that placement tested for clearance (struts/placement.hpp: clear_tip_foot,
+// prism_is_clear). A leaf's tip starts joint_overlap down inside its strut's top. The template's
+// cs_tip and cs_contact_tip build the same solid from the same points.
+struct TipEnds {
+    Vec3 bottom, top;
+    double bottom_width = 0, top_width = 0;
+};
+// `node`: the leaf; `tip_top`: where placement put the tip's top; `strut_width`: the top width of
+// the strut leaving the leaf.
+TipEnds leaf_tip(const Params& p, const Vec3& node, const Vec3& tip_top, double strut_width);
+// `tip_bottom`: a gap above the model; `node`: the contact node; `strut_width`: the bottom width
+// of the strut ending there.
+TipEnds contact_tip(const Params& p, const Vec3& tip_bottom, const Vec3& node, double strut_width);
+
+// The lowest a contact tip's bottom may come to the top of its node and still be built: a tip
+// shorter than this (a node already on the model's gap) is left out.
+constexpr double kShortestContactTip = 0.01;
+
+}  // namespace cs

@@ -1,0 +1,87 @@
+#include "tree/clearance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "core/rules.hpp"
+#include "query/model_query.hpp"
+#include "tree/candidates.hpp"
+#include "tree/tuning.hpp"
+
+namespace cs {
+
+bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance,
+                    bool onto_model, double joint_reach) {
+    if (model.segment_hits(a, b)) return false;
+    // The strut's own edges, and the same pushed out by the clearance (a bump of the model can
+    // slip between the outer lines and still cut the strut, so both are asked).
+    for (double c : {0.0, clearance}) {
+        if (c == clearance && c == 0.0 && clearance != 0.0) continue;
+        double ra = 0.5 * wa + c, rb = 0.5 * wb + c;
+        // The built strut reaches past b into its joint: onto the model, that end must stay clear too.
+        const Vec3 b_end = onto_model && c == 0.0 ? b + normalized(b - a) * joint_reach : b;
+        for (auto [sx, sy] : {std::pair{1, 1}, {1, -1}, {-1, 1}, {-1, -1}}) {
+            Vec3 ea = a + Vec3{sx * ra, sy * ra, 0}, eb = b_end + Vec3{sx * rb, sy * rb, 0};
+            if (model.segment_hits(ea, eb)) return false;
+        }
+        if (clearance == 0.0) break;
+    }
+    if (onto_model) {
+        // The strut's foot hangs a tip's length above the model: a ridge of the model can rise
+        // between its edges into the foot's square. Spokes across the square catch it.
+        const Vec3 foot = b + normalized(b - a) * joint_reach;
+        const double r = 0.5 * wb;
+        for (auto [sx, sy] : {std::pair{1, 1}, {1, -1}, {-1, 1}, {-1, -1}, {1, 0}, {-1, 0}, {0, 1}, {0, -1}})
+            if (model.segment_hits(foot, foot + Vec3{sx * r, sy * r, 0})) return false;
+    }
+    // The edges miss a bump of the model that pokes between them: also keep a ball around the
+    // axis, as wide as the strut's square (half-diagonal), free of the model.
+    double len = distance(a, b);
+    // Balls of radius r spaced r apart cover the axis with overlap: no gap for a bump to hide in.
+    double r_min = 0.5 * std::min(wa, wb) * std::sqrt(2.0);
+    int steps = std::max(1, static_cast<int>(std::ceil(len / std::clamp(r_min, 0.35, 2.0))));
+    // A strut onto the model ends a tip's length above it: near that end the balls shrink so they
+    // stay clear of the contact itself (they still catch a bump between the edges).
+    double end_room = onto_model ? 0.9 * std::sqrt(model.squared_distance(b)) : INFINITY;
+    for (int i = 0; i <= steps; ++i) {
+        double t = double(i) / steps;
+        double r = std::min((0.5 * (wa + (wb - wa) * t)) * std::sqrt(2.0), (1 - t) * len + end_room);
+        if (model.squared_distance(a + (b - a) * t) < r * r) return false;
+    }
+    return true;
+}
+
+bool enters_keep_out(const Params& p, const Vec3& a, const Vec3& b, double wb) {
+    if (p.keep_out.empty()) return false;
+    const double reach = joint_overlap(p);
+    if (sweep_meets_boxes(a, b, wb, reach, p.keep_out)) return true;
+    return b.z < 1e-6 && p.feet &&
+           sweep_meets_boxes(b, b + Vec3{0, 0, p.foot_height}, wb + 2 * p.foot_extra, 0, p.keep_out);
+}
+
+bool can_escape(const ModelQuery& model, const Params& p, const ConeFan& fan, const Vec3& a, double w) {
+    for (const auto& d : fan.dirs) {
+        double len = std::min(kTreeTuning.escape_length, a.z / -d.z);
+        Vec3 to = a + d * len;
+        double wb = std::max(w, eqn1_width(p, len, angle_from_vertical_deg(a, to)));
+        if (strut_is_clear(model, a, w, to, wb, 0.0)) return true;
+    }
+    return false;
+}
+
+Vec3 leaf_position(const ModelQuery& model, const Params& p, double tan_c, const Vec3& below) {
+    const double need = 0.5 * p.d_min + p.model_clearance + 0.05;
+    double d = std::sqrt(model.squared_distance(below));
+    if (d >= need) return below;
+    Vec3 away = below - model.closest_point(below);
+    away.z = 0;
+    if (norm(away) < 1e-9) return below;
+    double limit = std::min(0.5 * p.sampling_distance, p.tip_length * tan_c * 0.9);
+    Vec3 moved = below + normalized(away) * std::min(need - d, limit);
+    // In a slot narrower than a strut, moving off one wall meets the other: stay put.
+    if (model.segment_hits(below, moved) || model.inside(moved)) return below;
+    return moved;
+}
+
+}  // namespace cs

@@ -1,0 +1,67 @@
+// The tree sweep's tuning constants, in one place, each with the reason for its value.
+//
+// These are not user parameters (core/params.hpp) nor geometric rules shared with the struts
+// stage and the .scad (core/rules.hpp): they steer how the sweep searches, and changing one
+// changes the trees it grows. bench/same_outputs.sh shows by how much.
+#pragma once
+
+#include <array>
+#include <cstddef>
+
+namespace cs {
+
+struct TreeTuning {
+    // ---- the cone fan (tree/candidates.hpp): the axis, then rings of directions
+    // Rings at half and 95% of the critical angle: half finds model points straight-ish below;
+    // 95% reaches as far as the cone does while a contact tip (which sits above its model point)
+    // stays inside the cone.
+    std::array<double, 2> fan_rings{0.5, 0.95};
+    // Eight directions per ring; the outer ring turned by half a step so the two rings interleave.
+    int fan_directions = 8;
+
+    // ---- nudges off the model's surface
+    // A ray from an overhang sample starts this far below it, so it does not report the sample's
+    // own face (far below any layer, far above double rounding at model scale).
+    double ray_start_below_sample = 1e-4;
+    // "Material right below a sample" (overlapping shells) is probed this far under it: a tenth
+    // of the thinnest wall that matters, still clear of the face's own rounding.
+    double inside_probe_below_sample = 0.01;
+
+    // ---- clearance tests (tree/clearance.hpp)
+    // can_escape tries a strut this long (mm) along each fan direction: a couple of strut widths,
+    // enough to leave a crevice, short enough that the answer is about here and not far away.
+    double escape_length = 2.0;
+    // A tip can stand on a face sloping at most this much (degrees from horizontal); steeper, it
+    // would slide off and dig into the wall.
+    double stand_on_slope_deg = 45;
+
+    // ---- merge candidates
+    // Partners kept per node: the six with the least island span. More rarely changes the pick
+    // (candidates are ranked by span first) and costs a clearance test each.
+    std::size_t merge_keep = 6;
+
+    // ---- step_down: bends out of a tight spot
+    double step_reach = 20;      // longest bend tried (mm): beyond, the fan's landings take over
+    double step_shrink = 0.4;    // a blocked bend is retried this much shorter
+    double step_min_drop = 0.5;  // a bend must descend at least this (mm), or the sweep would crawl
+    double step_min_cos = 0.2;   // floor of the ray's cosine when converting a margin to a length
+                                 // (keeps near-horizontal rays from backing off without limit)
+
+    // ---- prices of the slicer cost model (tree/slicer_cost.hpp), for CuraEngine 4.13 with the
+    // bench profile (0.2 mm layers, acceleration 1500 mm/s^2, support as a support mesh with one
+    // wall and no infill); checked against its G-code in bench/results/tree_shape.md.
+    // Each island costs a stop and a start: accelerating to and from a hop of a few mm at
+    // 1500 mm/s^2 takes about 2 * sqrt(d / a) = 0.1 s for d = 4 mm, the outline's seam adds its
+    // own stop, and some hops retract. What the G-code of four models leaves after outline and
+    // travel: 0.20-0.26 s.
+    double island_seconds = 0.2;
+    // Outlines of 1 to 4 mm struts are drawn in segments of a few mm: at 1500 mm/s^2 they average
+    // well below the 60 mm/s support speed.
+    double outline_mm_per_second = 30;
+    // Travel between islands at 150 mm/s, slowed the same way by acceleration over hops of a few mm.
+    double travel_mm_per_second = 100;
+};
+
+inline constexpr TreeTuning kTreeTuning{};
+
+}  // namespace cs

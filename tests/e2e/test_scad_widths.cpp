@@ -1,0 +1,87 @@
+// The strut widths of the C++ struts stage and of the OpenSCAD template are two implementations
+// of the same rules (core/rules.hpp, scad_templates/clever_support.scad): per strut, on the tree
+// a generated .scad carries, they must agree. The template's widths come out through echo().
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "edit/scad_values.hpp"
+#include "struts/struts.hpp"
+#include "support.hpp"
+
+namespace cs::test {
+namespace {
+
+bool have_native() { return run("command -v openscad").code == 0; }
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+// The tree as the .scad holds it: nodes, struts, and which nodes are leaves (the template tells
+// bends from leaves by cs_leaves; the struts stage by the node kind).
+SupportTree tree_of(const ScadValues& v) {
+    SupportTree t;
+    for (const auto& n : v.at("cs_nodes").value) t.nodes.push_back({{n[0], n[1], n[2]}, NodeKind::Merge});
+    for (const auto& s : v.at("cs_struts").value) t.struts.push_back({s[0].get<int>(), s[1].get<int>()});
+    for (const auto& l : v.at("cs_leaves").value) t.nodes[l[0].get<int>()].kind = NodeKind::Leaf;
+    return t;
+}
+
+// [[upper, lower], ...] from the template, evaluated by OpenSCAD on the generated data.
+std::vector<std::array<double, 2>> template_widths(const std::string& dir, const std::string& scad) {
+    std::string text = read_text(scad);
+    text = text.substr(0, text.find("include <clever_support.scad>"));
+    const std::string driver = dir + "/widths.scad";
+    std::ofstream(driver) << text << "include <clever_support.scad>\n"
+                          << "echo(cs_widths = cs_derive(cs_tree_record, omit_struts, k, d_min, d_max, strength_length)[4]);\n";
+    auto r = run("openscad -o " + quote(dir + "/widths.echo") + " " + quote(driver));
+    EXPECT_EQ(r.code, 0) << r.out;
+    std::string echo = read_text(dir + "/widths.echo");
+    std::smatch m;
+    EXPECT_TRUE(std::regex_search(echo, m, std::regex("cs_widths = (\\[.*\\])"))) << echo;
+    std::vector<std::array<double, 2>> out;
+    for (const auto& w : nlohmann::json::parse(m[1].str())) out.push_back({w[0], w[1]});
+    return out;
+}
+
+void expect_same_widths(const std::string& model, const std::string& extra) {
+    if (!have_native()) GTEST_SKIP() << "no OpenSCAD";
+    TempDir dir;
+    auto r = run(quote(cli()) + " " + quote(model) + " --orient keep -q --out " + quote(dir.path) + " " + extra);
+    ASSERT_EQ(r.code, 0) << r.out;
+    const std::string name = std::filesystem::path(model).stem().string();
+    const std::string scad = dir / (name + ".scad");
+    const ScadValues v = parse_scad_values(read_text(scad), scad);
+    Params p;
+    p.k = v.at("k").value;
+    p.d_min = v.at("d_min").value;
+    p.d_max = v.at("d_max").value;
+    p.strength_length = v.at("strength_length").value;
+    const SizedTree sized = size_struts(tree_of(v), p);
+    const auto widths = template_widths(dir.path, scad);
+    ASSERT_EQ(widths.size(), sized.struts.size());
+    ASSERT_GT(widths.size(), 0u);
+    for (size_t e = 0; e < widths.size(); ++e) {
+        // Both size the same decimal data; echo() prints six significant digits (widths < 10 mm).
+        EXPECT_NEAR(widths[e][0], sized.struts[e].top_width, 2e-5) << "strut " << e << " upper width";
+        EXPECT_NEAR(widths[e][1], sized.struts[e].bottom_width, 2e-5) << "strut " << e << " lower width";
+    }
+}
+
+TEST(ScadWidths, TemplateSizesEveryStrutAsTheStrutsStage) {
+    expect_same_widths(source_dir() + "/examples/models/arches.stl", "");
+}
+
+TEST(ScadWidths, AgreeWithStifferStrutsAndSteeperEqn1) {
+    // A larger k and a shorter safe length make Eqn 1 and the strength rule decide more struts.
+    expect_same_widths(source_dir() + "/examples/models/tree.stl", "--k 0.004 --strength-length 12");
+}
+
+}  // namespace
+}  // namespace cs::test
