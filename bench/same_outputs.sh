@@ -15,6 +15,8 @@ trap 'rm -rf "$tmp"' EXIT
 run() {  # name, then arguments for the generator
   local name=$1; shift
   if "$cli" "$@" --no-timings -q --out "$tmp/$name" >"$tmp/log" 2>&1; then
+    # A .scad records the absolute input path: the checkout is written as <checkout>, so checkouts compare.
+    find "$tmp/$name" -name '*.scad' -exec sed -i "s|$PWD/|<checkout>/|g" {} +
     (cd "$tmp/$name" && find . -type f | LC_ALL=C sort | xargs sha256sum | sed "s|  \./|  $name/|")
   else
     echo "FAILED $name: $(head -c 300 "$tmp/log")"

@@ -61,15 +61,4 @@ const std::vector<Preset>& presets();
 // Throws ParameterError naming the known presets when `name` is unknown.
 Params preset_params(const std::string& name);
 
-// Eqn (1) of the paper: d = k * l * alpha (l in mm, alpha in degrees from vertical), clamped.
-double eqn1_width(const Params& p, double length, double angle_deg);
-// Width of the strut leaving a branch point that joins struts of widths w_i: (sum w_i^3)^(1/3)
-// (Murray's rule, as trees and vessels branch), never below the widest of them, clamped.
-double merged_width(const Params& p, const std::vector<double>& widths);
-
-// Width needed for a run of length `length` at `angle_deg` from vertical (strength rule).
-double strength_width(const Params& p, double length, double angle_deg);
-// Safe length of a strut of width `d` at `angle_deg` (inverse of strength_width).
-double safe_length(const Params& p, double d, double angle_deg);
-
 }  // namespace cs

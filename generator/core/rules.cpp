@@ -4,6 +4,35 @@
 #include <cmath>
 
 namespace cs {
+namespace {
+
+// The paper's Table 1: 1 mm struts are safe to 30 mm at <= 30 deg; 1.5 mm struts to 60 mm at
+// <= 50 deg. A safe length growing with d^2 (stiffness of a thin column against the nozzle's push)
+// matches both points: 30 * 1.5^2 * 0.85 = 57 mm at 50 deg. Steeper struts lose 15% per 20 deg.
+double angle_factor(double angle_deg) {
+    double a = std::max(0.0, angle_deg - 30.0);
+    return std::max(0.3, 1.0 - 0.15 * a / 20.0);
+}
+
+}  // namespace
+
+double safe_length(const Params& p, double d, double angle_deg) {
+    return p.strength_length * d * d * angle_factor(angle_deg);
+}
+
+double strength_width(const Params& p, double length, double angle_deg) {
+    return std::sqrt(std::max(0.0, length) / (p.strength_length * angle_factor(angle_deg)));
+}
+
+double eqn1_width(const Params& p, double length, double angle_deg) {
+    return std::clamp(p.k * length * angle_deg, p.d_min, p.d_max);
+}
+
+double merged_width(const Params& p, const std::vector<double>& widths) {
+    double cubes = 0, widest = 0;
+    for (double w : widths) cubes += w * w * w, widest = std::max(widest, w);
+    return std::clamp(std::max(std::cbrt(cubes), widest), p.d_min, p.d_max);
+}
 
 EndWidths strut_end_widths(const Params& p, double node_width, double run_length, double run_angle_deg, double length,
                            double angle_deg) {

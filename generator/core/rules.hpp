@@ -19,13 +19,18 @@ namespace cs {
 
 // ----------------------------------------------------------------------------- strut widths
 //
-// The width formulas themselves sit in core/params.hpp until the parameter table there is
-// finished (they were declared with the parameters they read):
-//   eqn1_width(p, l, a)        the paper's Eqn (1), d = k * l * alpha, clamped to [d_min, d_max]
-//   strength_width(p, l, a)    the width a run of length l at angle a needs to stay stiff
-//   safe_length(p, d, a)       its inverse: how long a strut of width d may run
-//   merged_width(p, widths)    Murray's rule at a branch point, never below the widest, clamped
-// Everything below combines them; nothing else in the generator may.
+// Eqn (1) of the paper: d = k * l * alpha (l in mm, alpha in degrees from vertical), clamped.
+double eqn1_width(const Params& p, double length, double angle_deg);
+// Width of the strut leaving a branch point that joins struts of widths w_i: (sum w_i^3)^(1/3)
+// (Murray's rule, as trees and vessels branch), never below the widest of them, clamped.
+double merged_width(const Params& p, const std::vector<double>& widths);
+
+// Width needed for a run of length `length` at `angle_deg` from vertical (strength rule).
+double strength_width(const Params& p, double length, double angle_deg);
+// Safe length of a strut of width `d` at `angle_deg` (inverse of strength_width).
+double safe_length(const Params& p, double d, double angle_deg);
+
+// strut_end_widths combines them for one strut; nothing else in the generator may.
 
 // The widths at the two ends of one strut.
 struct EndWidths {

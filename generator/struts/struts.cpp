@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "core/rules.hpp"
+
 namespace cs {
 namespace {
 

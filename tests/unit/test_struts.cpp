@@ -6,6 +6,7 @@
 
 #include "check/check.hpp"
 #include "core/params.hpp"
+#include "core/rules.hpp"
 #include "overhang/overhang.hpp"
 #include "query/model_query.hpp"
 #include "shapes.hpp"
