@@ -52,7 +52,9 @@ private:
     }
 
     int add_node(const Vec3& p, NodeKind kind, const Vec3& contact, double width) {
-        t_.nodes.push_back({p, kind, contact});
+        Node n;
+        n.p = p, n.kind = kind, n.contact = contact;
+        t_.nodes.push_back(n);
         width_.push_back(width);
         active_.push_back(0);
         in_struts_.emplace_back();
