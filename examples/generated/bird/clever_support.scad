@@ -26,9 +26,9 @@
 //       when n_profile is true, else solid. Struts, tips, feet and pillars are all cs_prism.
 //   cs_strut(a, b, w_a, w_b, wall, min_n)
 //       an N-profile strut from upper point a to lower point b; solid square when narrower than min_n.
-//   cs_tip(bottom_z_point, top, w_bottom, tip_diameter, tip_length)
-//       a detachable tip: straight neck, then a taper over tip_length to tip_diameter at `top`.
-//   cs_contact_tip(bottom, top, tip_diameter, w_top, tip_length)
+//   cs_tip(bottom, top, w_bottom, tip_diameter, wall)
+//       a detachable tip: one taper from its strut (w_bottom, at `bottom`) to tip_diameter at `top`.
+//   cs_contact_tip(bottom, top, tip_diameter, w_top, wall)
 //       the same, upside down, where a strut stands on the model.
 //   cs_foot(bed_point, toward, w, foot_height, foot_extra, room, clearance, wall)
 //       a foot on the bed, w + 2*extra wide at z = 0, narrowing to w at foot_height along the strut;
@@ -39,18 +39,22 @@
 //       [nodes, struts, leaves, contacts, beds, pillars, overlap]
 //         nodes    [[x,y,z], ...]
 //         struts   [[top node, bottom node], ...]  (top above bottom)
-//         leaves   [[node, [x,y,z] overhang sample, tip drop], ...]: the tip ends `drop` below the sample
+//         leaves   [[node, [x,y,z] overhang sample, [x,y,z] tip top], ...]: the tip ends at its top, a
+//                  gap below the sample (more under a slope, up to half a millimetre aside)
 //         contacts [[node, [x,y,z] tip bottom], ...]: an upside-down tip from there up to the node
 //         beds     [[node, room], ...]: nodes on the bed; room: distance from the foot to the model
 //         pillars  [[[x,y,z] top, [x,y,z] bottom], ...]  too short for a tree: d_min up to the tip
 //         overlap  how far a strut reaches into the solid below it (mm)
+//       tip_length: how long the tips are is fixed by where the tree put its leaves and contact
+//       nodes (a regrow parameter); cs_tree takes it only so files written before still call it.
 //       omit: strut indices left out with every strut above them (their branch); highlight: a
 //       strut index drawn red (-1: none).
 //   cs_show_edits(blockers, points): see-through boxes and points in the preview (not rendered).
 //   cs_strut_widths(...) returns [[upper, lower], ...] per strut, for inspection with echo().
 
-// Node kinds, as the comments in a generated file name them.
-CS_LEAF = 0; CS_MERGE = 1; CS_BEND = 2; CS_BED = 3; CS_CONTACT = 4;
+// Node kinds, as the comments in a generated file name them. A dropped node (given up: no strut
+// fits from there) stays in the data so indices do not move; nothing is built at it.
+CS_LEAF = 0; CS_MERGE = 1; CS_BEND = 2; CS_BED = 3; CS_CONTACT = 4; CS_DROPPED = 5;
 
 // ----------------------------------------------------------------------------- width rules
 
@@ -189,28 +193,16 @@ module cs_strut(a, b, w_a, w_b, wall, min_n) {
     cs_prism(b, a, w_b, w_a, min(w_a, w_b) >= min_n, wall);
 }
 
-// A tip from `bottom` (width w_bottom) up to `top` (tip_diameter): a straight neck, then the taper.
-module cs_tip(bottom, top, w_bottom, tip_diameter, tip_length, wall) {
-    z_taper = top[2] - tip_length;
-    if (z_taper <= bottom[2] + 1e-6) {
-        cs_prism(bottom, top, w_bottom, tip_diameter, false, wall);
-    } else {
-        neck_top = [top[0], top[1], z_taper];
-        cs_prism(bottom, neck_top, w_bottom, w_bottom, false, wall);
-        cs_prism(neck_top, top, w_bottom, tip_diameter, false, wall);
-    }
+// A tip from `bottom` (width w_bottom, inside its strut's top) up to `top` (tip_diameter): one
+// taper along the line the generator tested for clearance (core/rules.hpp, leaf_tip). A tip whose
+// top sits aside of its leaf slants; a neck would bend it off that line.
+module cs_tip(bottom, top, w_bottom, tip_diameter, wall) {
+    cs_prism(bottom, top, w_bottom, tip_diameter, false, wall);
 }
 
-// A tip standing on the model: taper up from `bottom` (tip_diameter) over tip_length, then a neck.
-module cs_contact_tip(bottom, top, tip_diameter, w_top, tip_length, wall) {
-    z_taper = bottom[2] + tip_length;
-    if (z_taper >= top[2] - 1e-6) {
-        cs_prism(bottom, top, tip_diameter, w_top, false, wall);
-    } else {
-        neck_bottom = [bottom[0], bottom[1], z_taper];
-        cs_prism(bottom, neck_bottom, tip_diameter, w_top, false, wall);
-        cs_prism(neck_bottom, top, w_top, w_top, false, wall);
-    }
+// A tip standing on the model: one taper up from `bottom` (tip_diameter) to its node (w_top).
+module cs_contact_tip(bottom, top, tip_diameter, w_top, wall) {
+    cs_prism(bottom, top, tip_diameter, w_top, false, wall);
 }
 
 // Half-way up its strut at most; as wide as the room to the model allows (minus the clearance),
@@ -246,9 +238,9 @@ module cs_tree(tree, omit, highlight, k, d_min, d_max, strength_length, wall, ti
     }
     color("darkorange") {
         for (l = leaves) if (out[l[0]] >= 0)
-            cs_tip(nodes[l[0]] - [0, 0, overlap], l[1] - [0, 0, l[2]], w[out[l[0]]][0], tip_diameter, tip_length, wall);
+            cs_tip(nodes[l[0]] - [0, 0, overlap], l[2], w[out[l[0]]][0], tip_diameter, wall);
         for (c = contacts) if (len(node_in[c[0]]) > 0)
-            cs_contact_tip(c[1], nodes[c[0]], tip_diameter, w[node_in[c[0]][0]][1], tip_length, wall);
+            cs_contact_tip(c[1], nodes[c[0]], tip_diameter, w[node_in[c[0]][0]][1], wall);
         for (p = pillars) cs_prism(p[1], p[0], d_min, tip_diameter, false, wall);
     }
 }
