@@ -57,6 +57,12 @@ struct Mesh {
     bool empty() const { return faces.empty(); }
 };
 
+// One key for the undirected edge between vertices a and b (either order): the smaller index in
+// the high word.
+inline std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+    return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a;
+}
+
 struct Box3 {
     Vec3 min{INFINITY, INFINITY, INFINITY};
     Vec3 max{-INFINITY, -INFINITY, -INFINITY};

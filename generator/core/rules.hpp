@@ -48,6 +48,12 @@ EndWidths strut_end_widths(const Params& p, double node_width, double run_length
 // Narrowest width at which an N-profile keeps open gaps between its three walls.
 double min_n_width(const Params& p);
 
+// ----------------------------------------------------------------------------- what needs support
+
+// A face whose unit outward normal has n_z below this needs support: n_z < -sin(critical angle).
+// Orientation (orient/) scores poses and sampling (overhang/) classifies faces by it.
+double overhang_normal_z_limit(double critical_angle_deg);
+
 // ----------------------------------------------------------------------------- joints and contacts
 
 // How far a strut (or a tip) reaches into the solid below it, so joints overlap instead of

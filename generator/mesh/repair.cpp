@@ -24,10 +24,6 @@ struct VecHash {
     }
 };
 
-std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
-    return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a;
-}
-
 struct DisjointSets {
     std::vector<int> parent;
     explicit DisjointSets(size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }

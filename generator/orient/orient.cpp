@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/rules.hpp"
 #include "mesh/repair.hpp"
 #include "overhang/overhang.hpp"
 
@@ -19,7 +20,7 @@ double rotated_overhang_area(const Mesh& m, const Rotation& r, double critical_a
         z[i] = r.m[2][0] * m.vertices[i].x + r.m[2][1] * m.vertices[i].y + r.m[2][2] * m.vertices[i].z;
         zmin = std::min(zmin, z[i]);
     }
-    const double sin_c = std::sin(critical_angle * M_PI / 180.0);
+    const double nz_limit = overhang_normal_z_limit(critical_angle);
     double area = 0;
     for (const auto& f : m.faces) {
         if (std::max({z[f[0]], z[f[1]], z[f[2]]}) - zmin <= 0.5 * bed_height) continue;
@@ -27,7 +28,7 @@ double rotated_overhang_area(const Mesh& m, const Rotation& r, double critical_a
         double len = norm(n);
         if (len == 0) continue;
         double nz = r.m[2][0] * n.x + r.m[2][1] * n.y + r.m[2][2] * n.z;
-        if (nz / len < -sin_c) area += 0.5 * len;
+        if (nz / len < nz_limit) area += 0.5 * len;
     }
     return area;
 }
@@ -35,7 +36,7 @@ double rotated_overhang_area(const Mesh& m, const Rotation& r, double critical_a
 // Greedy clustering of unit directions within `max_angle` degrees, heaviest first.
 std::vector<Vec3> merge_directions(std::vector<std::pair<double, Vec3>> weighted, double max_angle, size_t keep) {
     std::stable_sort(weighted.begin(), weighted.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    const double cos_max = std::cos(max_angle * M_PI / 180.0);
+    const double cos_max = std::cos(deg_to_rad(max_angle));
     std::vector<Vec3> out;
     for (const auto& entry : weighted) {
         const Vec3& d = entry.second;  // a plain reference: lambdas may not capture structured bindings before C++20 in clang 14
@@ -83,7 +84,7 @@ std::vector<std::pair<Vec3, std::string>> candidate_directions(const Mesh& mesh)
             std::stable_sort(facets.begin(), facets.end(), [](const auto& a, const auto& b) { return a.area > b.area; });
             facets.resize(4000);
         }
-        const double cos_near = std::cos(10 * M_PI / 180);
+        const double cos_near = std::cos(deg_to_rad(10));
         std::vector<std::pair<double, Vec3>> counted;
         for (const auto& f : facets) {
             double w = 0;
@@ -95,7 +96,7 @@ std::vector<std::pair<Vec3, std::string>> candidate_directions(const Mesh& mesh)
     // Drop hull directions that repeat an earlier candidate.
     std::vector<std::pair<Vec3, std::string>> unique;
     for (const auto& d : dirs) {
-        bool dup = std::any_of(unique.begin(), unique.end(), [&](const auto& u) { return dot(u.first, d.first) > std::cos(2 * M_PI / 180); });
+        bool dup = std::any_of(unique.begin(), unique.end(), [&](const auto& u) { return dot(u.first, d.first) > std::cos(deg_to_rad(2)); });
         if (!dup) unique.push_back(d);
     }
     return unique;

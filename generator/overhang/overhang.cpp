@@ -5,6 +5,7 @@
 #include <numbers>
 #include <unordered_map>
 
+#include "core/rules.hpp"
 #include "core/xy_grid.hpp"
 #include "query/model_query.hpp"
 
@@ -45,10 +46,6 @@ private:
     XyGrid<Vec3> grid_;
     double reach_, angle_;
 };
-
-std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
-    return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a;
-}
 
 void sample_segment(const Vec3& a, const Vec3& b, double spacing, std::vector<Vec3>& out) {
     int n = std::max(1, static_cast<int>(std::ceil(distance(a, b) / spacing)));
@@ -214,9 +211,7 @@ bool rests_on_material(const ModelQuery& model, const Vec3& x, double touching_s
 }
 
 
-bool needs_support(const Vec3& n, double critical_angle_deg) {
-    return n.z < -std::sin(deg_to_rad(critical_angle_deg));
-}
+bool needs_support(const Vec3& n, double critical_angle_deg) { return n.z < overhang_normal_z_limit(critical_angle_deg); }
 
 std::vector<char> classify_faces(const Mesh& m, const OverhangOptions& o) {
     std::vector<char> out(m.faces.size(), 0);

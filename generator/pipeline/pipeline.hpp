@@ -10,6 +10,7 @@
 
 #include "core/geometry.hpp"
 #include "core/params.hpp"
+#include "core/sha256.hpp"
 #include "mesh/repair.hpp"
 #include "orient/orient.hpp"
 #include "overhang/overhang.hpp"
@@ -106,8 +107,5 @@ bool is_scad_input(const std::string& path);
 // The placement as 13 numbers: scale, the rotation's rows, the translation. A user's edits are
 // in the placed model's coordinates: a regrow compares these to know whether they still fit.
 std::vector<double> pose_numbers(const Placement& placement);
-
-std::string sha256_hex(std::string_view bytes);
-std::string file_sha256(const std::string& path);
 
 }  // namespace cs
