@@ -1,0 +1,24 @@
+// core/sha256: the FIPS 180-4 test vectors, and a file hashed as its bytes.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "core/sha256.hpp"
+#include "support.hpp"
+
+using namespace cs;
+
+TEST(Sha256, FipsTestVectors) {
+    EXPECT_EQ(sha256_hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+    EXPECT_EQ(sha256_hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+    // Two blocks: the padding spills into a second one.
+    EXPECT_EQ(sha256_hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
+              "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
+}
+
+TEST(Sha256, AFileHashesAsItsBytes) {
+    cs::test::TempDir tmp;
+    const std::string path = tmp.path + "/a.bin";
+    std::ofstream(path, std::ios::binary) << "abc";
+    EXPECT_EQ(file_sha256(path), sha256_hex("abc"));
+}
