@@ -26,7 +26,7 @@ const std::vector<ParamRow>& param_table() {
          "Overhang sample spacing, mm",
          {"sampling", P::regrow, "Spacing of the supported points under overhangs (mm)", "[0.25:0.25:10]"}},
         {"--tip-length", &Params::tip_length, "tip_length_mm", "mm", {.min = 0, .max = 20}, "Tapered tip length, mm",
-         {"tip_length", P::walls_and_tips, "Length of the tapered tip at each model contact (mm)", "[0.2:0.1:5]"}},
+         {"tip_length", P::regrow, "Length of the tapered tips (mm): the tree places its nodes by it", "[0.2:0.1:5]"}},
         {"--tip-diameter", &Params::tip_diameter, "tip_diameter_mm", "mm", {.min = 0, .max = 10, .min_open = true},
          "Tip width at the model, mm",
          {"tip_diameter", P::walls_and_tips, "Width of a tip where it meets the model (mm)", "[0.2:0.05:3]"}},

@@ -21,8 +21,6 @@ strength_length = 30; // [5:1:120]
 /* [Walls and tips] */
 // Wall thickness of the N-profile (mm); slicers drop walls of one line width (0.4)
 wall = 0.5; // [0.3:0.05:2]
-// Length of the tapered tip at each model contact (mm)
-tip_length = 1; // [0.2:0.1:5]
 // Width of a tip where it meets the model (mm)
 tip_diameter = 0.8; // [0.2:0.05:3]
 
@@ -55,6 +53,8 @@ highlight_strut = -1;
 critical_angle = 50; // [5:1:80]
 // Spacing of the supported points under overhangs (mm)
 sampling = 2.5; // [0.25:0.25:10]
+// Length of the tapered tips (mm): the tree places its nodes by it
+tip_length = 1; // [0.2:0.1:5]
 // Air between a tip and the model (mm)
 gap = 0.2; // [0:0.05:1]
 // Air kept between struts and the model (mm)
