@@ -78,7 +78,7 @@ KnownShortfall known_shortfall(const std::string& file, bool buildplate_only) {
         {"armadillo.stl", {{1, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
         {"beast.stl", {{0, 0, 2, 0, 0}, {0, 0, 2, 0, 0}}},
         {"stanford_bunny.stl", {{0, 0, 1, 0, 0}, {0, 0, 1, 0, 0}}},
-        {"nefertiti.stl", {{8, 1, 0, 0, 0}, {8, 1, 0, 0, 0}}},
+        {"nefertiti.stl", {{7, 1, 0, 0, 0}, {8, 1, 0, 0, 0}}},
         {"igea.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
         {"example:tree", {{1, 1, 0, 0, 0}, {}}},
         {"auto:tree", {{0, 0, 1, 0, 1}, {}}},
