@@ -404,10 +404,11 @@ int cmd_generate(const GenerateArgs& g, const RunOptions& o) {
 int cmd_regrow(const std::string& file, const RunOptions& o) {
     EditedScad edited = read_edited_scad(file);
     const Job& job = edited.job;
-    if (!o.quiet && file_sha256(job.input) != edited.input_sha256)
+    Result r = run_showing_progress(job, o);
+    // The run hashed the input as it read it: no second read of a big mesh for this note.
+    if (!o.quiet && r.input_sha256 != edited.input_sha256)
         std::fprintf(stderr, "clever-support: note: %s changed since %s was written; the supports follow it as it is now\n",
                      job.input.c_str(), file.c_str());
-    Result r = run_showing_progress(job, o);
     bool placed_edits = !job.edits.blockers.empty() || !job.edits.support_points.empty();
     if (placed_edits && pose_numbers(r.placement) != edited.pose)
         r.warnings.push_back("the model is placed differently than when " + file +

@@ -21,16 +21,11 @@ std::string sha256_hex(std::string_view data) {
         0xc67178f2};
     std::uint32_t h[8] = {0x6a09e667, 0xbb67ae85, 0x3c6ef372, 0xa54ff53a, 0x510e527f, 0x9b05688c, 0x1f83d9ab, 0x5be0cd19};
     auto rotr = [](std::uint32_t x, int n) { return (x >> n) | (x << (32 - n)); };
-    std::string msg(data);
-    std::uint64_t bits = std::uint64_t(data.size()) * 8;
-    msg.push_back(char(0x80));
-    while (msg.size() % 64 != 56) msg.push_back(0);
-    for (int i = 7; i >= 0; --i) msg.push_back(char((bits >> (8 * i)) & 0xff));
-    for (size_t off = 0; off < msg.size(); off += 64) {
+    auto compress = [&](const unsigned char* block) {
         std::uint32_t w[64];
         for (int i = 0; i < 16; ++i)
-            w[i] = (std::uint32_t(std::uint8_t(msg[off + 4 * i])) << 24) | (std::uint32_t(std::uint8_t(msg[off + 4 * i + 1])) << 16) |
-                   (std::uint32_t(std::uint8_t(msg[off + 4 * i + 2])) << 8) | std::uint32_t(std::uint8_t(msg[off + 4 * i + 3]));
+            w[i] = (std::uint32_t(block[4 * i]) << 24) | (std::uint32_t(block[4 * i + 1]) << 16) |
+                   (std::uint32_t(block[4 * i + 2]) << 8) | std::uint32_t(block[4 * i + 3]);
         for (int i = 16; i < 64; ++i) {
             std::uint32_t s0 = rotr(w[i - 15], 7) ^ rotr(w[i - 15], 18) ^ (w[i - 15] >> 3);
             std::uint32_t s1 = rotr(w[i - 2], 17) ^ rotr(w[i - 2], 19) ^ (w[i - 2] >> 10);
@@ -43,7 +38,17 @@ std::string sha256_hex(std::string_view data) {
             hh = g, g = f, f = e, e = d + t1, d = c, c = b, b = a, a = t1 + t2;
         }
         h[0] += a, h[1] += b, h[2] += c, h[3] += d, h[4] += e, h[5] += f, h[6] += g, h[7] += hh;
-    }
+    };
+    // Whole blocks straight from the input (no copy of a big file); then the tail, padded.
+    const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
+    const size_t whole = data.size() / 64 * 64;
+    for (size_t off = 0; off < whole; off += 64) compress(bytes + off);
+    std::string tail(data.substr(whole));
+    const std::uint64_t bits = std::uint64_t(data.size()) * 8;
+    tail.push_back(char(0x80));
+    while (tail.size() % 64 != 56) tail.push_back(0);
+    for (int i = 7; i >= 0; --i) tail.push_back(char((bits >> (8 * i)) & 0xff));
+    for (size_t off = 0; off < tail.size(); off += 64) compress(reinterpret_cast<const unsigned char*>(tail.data()) + off);
     std::ostringstream out;
     for (auto x : h) out << std::hex << std::setw(8) << std::setfill('0') << x;
     return out.str();

@@ -16,6 +16,11 @@ TEST(Sha256, FipsTestVectors) {
               "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
 }
 
+TEST(Sha256, ManyWholeBlocksThenTheTail) {
+    // FIPS 180-4's long vector: a million 'a', 15,625 whole blocks read in place, then the padding.
+    EXPECT_EQ(sha256_hex(std::string(1000000, 'a')), "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+}
+
 TEST(Sha256, AFileHashesAsItsBytes) {
     cs::test::TempDir tmp;
     const std::string path = tmp.path + "/a.bin";
