@@ -22,7 +22,7 @@ class Sweep {
 public:
     Sweep(const ModelQuery& model, const Params& p)
         : model_(model), p_(p), fan_(p.critical_angle), cx_{model, p, fan_, tree()},
-          active_nodes_(std::max(2.0 * p.sampling_distance, 1.0)) {}
+          released_nodes_(std::max(2.0 * p.sampling_distance, 1.0)), active_nodes_(std::max(2.0 * p.sampling_distance, 1.0)) {}
 
     SupportTree run(const std::vector<Sample>& samples) {
         hang_leaves(samples);
@@ -61,16 +61,17 @@ private:
         run_.push_back(0);
         retries_.push_back(0);
         banned_.emplace_back();
+        alone_.push_back(0);
         return static_cast<int>(t_.nodes.size()) - 1;
     }
     void activate(int id) {
         active_[id] = 1;
-        active_nodes_.insert(id, t_.nodes[id].p);
+        if (alone_[id] < kSolo) pool(id).insert(id, t_.nodes[id].p);
         heap_.push({t_.nodes[id].p.z, -id});
     }
     void retire(int id) {
         active_[id] = 0;
-        active_nodes_.remove(id, t_.nodes[id].p);
+        if (alone_[id] < kSolo) pool(id).remove(id, t_.nodes[id].p);
     }
     void connect(int top, int bottom) {
         in_struts_[bottom].push_back(static_cast<int>(t_.struts.size()));
@@ -185,7 +186,7 @@ private:
         collect_contacts(cx_, t_.nodes[id].p, bound / fan_.cos_min, &skipped, &fan_.slanted_only, cands);
         bound = INFINITY;
         for (const auto& c : cands) bound = std::min(bound, c.span);
-        if (tree()) collect_merges(cx_, active_nodes_, t_.nodes, id, banned_[id], bound * (1 + 1e-9), cands);
+        if (tree() && alone_[id] < kSolo) collect_merges(cx_, pool(id), t_.nodes, id, banned_[id], bound * (1 + 1e-9), cands);
         by_cost(cands);
         if (take_first_clear(id, cands)) return;
         // Nothing near fits: the farther fan (slanted landings beyond the vertical's reach).
@@ -209,11 +210,12 @@ private:
             return;
         }
         // Nothing fits here. First undo what was joined into this node, so the branches above try
-        // again elsewhere (a merge made a node too wide for where it hangs); after that, drop it
-        // and the branches above it rather than print supports fused into the model. The report
-        // counts the samples lost; `check` judges whether their neighbours still cover them.
+        // again elsewhere (a merge made a node too wide for where it hangs); after that, break up
+        // the branches above it: each leaf goes down again alone. A leaf that cannot get down alone
+        // is dropped rather than printed fused into the model; the report counts the samples lost
+        // and `check` judges whether their neighbours still cover them.
         if (undo_joins(id)) return;
-        drop_with_branches(id);
+        release_branches(id);
     }
 
     // Detaches the struts ending at `id` and sends the nodes above back to the sweep, barred from
@@ -244,21 +246,37 @@ private:
         return true;
     }
 
-    void drop_with_branches(int id) {
+    // Takes apart the dead end `id` and everything joined into it. Each leaf above that has not
+    // gone down alone yet starts again from its own place, thin, alone: it merges with no one and
+    // no one with it, so a dead end costs at most one more descent per leaf, and only the leaves
+    // that find no way down even alone are lost.
+    void release_branches(int id) {
         std::vector<int> stack{id};
+        std::size_t lost = 0;
         while (!stack.empty()) {
             int v = stack.back();
             stack.pop_back();
             if (active_[v]) retire(v);
-            if (t_.nodes[v].kind == NodeKind::Leaf) ++t_.stats.dropped;
-            t_.nodes[v].kind = NodeKind::Dropped;
             for (int e : in_struts_[v]) {
                 stack.push_back(t_.struts[e].top);
                 t_.struts[e] = {-1, -1};
             }
             in_struts_[v].clear();
+            if (t_.nodes[v].kind == NodeKind::Leaf && alone_[v] < kSolo) {
+                restart_released(v);
+                continue;
+            }
+            if (t_.nodes[v].kind == NodeKind::Leaf) ++lost;
+            t_.nodes[v].kind = NodeKind::Dropped;
         }
-        ++t_.stats.dropped_branches;
+        t_.stats.dropped += lost;
+        t_.stats.dropped_branches += lost > 0;
+    }
+    void restart_released(int leaf) {
+        ++alone_[leaf];
+        width_[leaf] = p_.d_min;
+        run_[leaf] = 0;
+        activate(leaf);
     }
 
     double merged_estimate(int id, const Candidate& c) const {
@@ -279,6 +297,7 @@ private:
                 retire(c.other);
                 int s = add_node(c.point, NodeKind::Merge, {}, w);
                 retries_[s] = std::max(retries_[id], retries_[c.other]);
+                alone_[s] = alone_[id];
                 connect(id, s);
                 connect(c.other, s);
                 activate(s);
@@ -328,6 +347,7 @@ private:
         }
         retire(id);
         int c = add_node(best, NodeKind::Chain, {}, bottom_width(id, best));
+        alone_[c] = alone_[id];
         run_[c] = run_[id] + distance(a, best);
         retries_[c] = retries_[id];
         connect(id, c);
@@ -347,6 +367,12 @@ private:
     std::vector<double> run_;  // bends: length of the unbranched run above them
     std::vector<int> retries_;               // how often a node was sent back by undo_joins
     std::vector<std::vector<int>> banned_;   // nodes a node may not join again
+    // How often a leaf was released from a dead end: once, it merges only with others released
+    // once (the trunk that failed is not rebuilt); twice, it goes down alone. Its struts inherit it.
+    static constexpr char kReleased = 1, kSolo = 2;
+    std::vector<char> alone_;
+    ActiveNodes& pool(int id) { return alone_[id] == kReleased ? released_nodes_ : active_nodes_; }
+    ActiveNodes released_nodes_;
     ActiveNodes active_nodes_;
     std::priority_queue<std::pair<double, int>> heap_;  // highest first, then lowest id
 };
