@@ -35,6 +35,13 @@ inline Vec3 normalized(const Vec3& a) {
 }
 inline double distance(const Vec3& a, const Vec3& b) { return norm(a - b); }
 inline double horizontal_distance(const Vec3& a, const Vec3& b) { return std::hypot(a.x - b.x, a.y - b.y); }
+// Distance from p to the segment a-b.
+inline double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const Vec3 ab = b - a;
+    const double len2 = dot(ab, ab);
+    const double t = len2 > 0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+    return distance(p, a + ab * t);
+}
 
 // Degrees to radians and back: parameters and reports speak degrees, <cmath> radians. Written
 // as `deg * pi / 180` (not `deg * (pi / 180)`): the two differ in the last bit for some angles,

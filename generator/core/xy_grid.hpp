@@ -39,6 +39,12 @@ public:
         v.erase(std::find(v.begin(), v.end(), item));
     }
 
+    // The items of cell (i, j), or null where it is empty.
+    const std::vector<T>* at(long i, long j) const {
+        auto it = cells_.find(key(i, j));
+        return it == cells_.end() ? nullptr : &it->second;
+    }
+
     // Calls visit(item) for every item in the cells k rings around p's cell (k = 0: that cell;
     // k = 1: the eight around it; ...). When visit returns bool, true stops the visit; the
     // function then returns true.

@@ -152,7 +152,8 @@ std::string report_json(const Result& r, const Job& job) {
                       {"face_samples", counts[0]},
                       {"edge_samples", counts[1]},
                       {"point_samples", counts[2]},
-                      {"centroid_samples", counts[3]}};
+                      {"centroid_samples", counts[3]},
+                      {"top_up_samples", r.samples.topped_up}};
     j["supports"] = supports_json(r.supports, job.params);
     j["columns_baseline"] = supports_json(r.columns, job.params);
     double saved_v = r.columns.volume > 0 ? 1 - r.supports.volume / r.columns.volume : 0;

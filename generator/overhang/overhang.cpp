@@ -12,6 +12,10 @@
 namespace cs {
 namespace {
 
+// How far the steepest overhang rises over a horizontal run: points further apart in z than this
+// over `run` lie on different surfaces.
+double surface_rise(double run, double critical_angle_deg) { return run * std::tan(deg_to_rad(90 - critical_angle_deg)); }
+
 // Edge function of p against the directed edge u->v. Computed from the lexicographically smaller
 // endpoint so both triangles sharing an edge get bit-identical values of opposite sign: the
 // top-left tie rule then gives a lattice point on the edge to exactly one of them.
@@ -37,9 +41,11 @@ public:
     CoverGrid(double reach, double critical_angle) : grid_(reach), reach_(reach), angle_(critical_angle) {}
 
     void add(const Vec3& p) { grid_.insert(p, p); }
-    // `above`: how much higher than x a coverer may lie at most (beyond the surface rule).
-    bool covered(const Vec3& x, double above = INFINITY) const {
-        return grid_.visit_near(x, 1, [&](const Vec3& q) { return q.z <= x.z + above && covers(q, x, reach_, angle_); });
+    // `above`: how much higher than x a coverer may lie at most (beyond the surface rule);
+    // `reach`: at most the grid's own.
+    bool covered(const Vec3& x, double above = INFINITY) const { return covered_within(x, reach_, above); }
+    bool covered_within(const Vec3& x, double reach, double above = INFINITY) const {
+        return grid_.visit_near(x, 1, [&](const Vec3& q) { return q.z <= x.z + above && covers(q, x, reach, angle_); });
     }
 
 private:
@@ -56,16 +62,50 @@ void sample_segment(const Vec3& a, const Vec3& b, double spacing, std::vector<Ve
 // half the spacing). Every point of a face lies within half a diagonal of this finer lattice of
 // one of them (or near a corner or the centroid of a small face).
 constexpr int kDemandRefinement = 16;
-// Step along rims and ridges while looking for uncovered stretches, as a fraction of the reach:
-// fine enough that the sample placed past an uncovered point lands within a step of the best spot.
+// Step along rims and ridges while looking for uncovered stretches, as a fraction of the reach.
+// Sampling steps a quarter of the reach: fine enough that the sample placed past an uncovered
+// point lands within a step of the best spot. The top-up steps an eighth: every point between two
+// steps is then within half a step (kReachMarginOfSpacing) of one of them.
 constexpr double kEdgeStepOfReach = 0.25;
+constexpr double kStrictEdgeStepOfReach = 0.125;
 // A rim sample goes this fraction of the reach past the first uncovered point, a hair short of the
 // full reach so rounding never leaves that point just outside.
 constexpr double kEdgeAdvance = 0.98;
-// Extras and anchors cover our points within the reach less half a diagonal of
-// the refined lattice, so that every point between ours is still within the full reach. The
-// lattice needs no margin: inside its cells every point is within reach of a corner.
+// Our points are covered within the reach less half a diagonal of the refined lattice, so that
+// every point between ours is still within the full reach. Sampling lets the lattice cover at the
+// full reach (inside its cells every point is within reach of a corner: not so in a cell the
+// overhang only partly fills, by up to this margin); the top-up does that only inside full cells
+// (LatticeCells) and judges everything else with the margin, and so leaves no gap at all.
 constexpr double kReachMarginOfSpacing = std::numbers::sqrt2 / 2 / kDemandRefinement;
+static_assert(kStrictEdgeStepOfReach * std::numbers::sqrt2 / 2 / 2 <= kReachMarginOfSpacing + 1e-12);
+
+// The lattice samples by cell corner. A point inside a lattice cell whose four corners all carry
+// a sample on its surface is within reach of one of them wherever it lies in the cell, so points
+// between the demand points there are covered too. Elsewhere (a cell the overhang only partly
+// fills) a demand point covers its neighbourhood only with the margin kReachMarginOfSpacing.
+class LatticeCells {
+public:
+    LatticeCells(double spacing, double rise) : z_(spacing), s_(spacing), rise_(rise) {}
+
+    void add(const Vec3& p) { z_.insert_at(std::lround(p.x / s_), std::lround(p.y / s_), p.z); }
+    bool full_cell_around(const Vec3& x, double above) const {
+        const long i = z_.index(x.x), j = z_.index(x.y);
+        for (long a = i; a <= i + 1; ++a)
+            for (long b = j; b <= j + 1; ++b)
+                if (!corner_on_surface(a, b, x, above)) return false;
+        return true;
+    }
+
+private:
+    bool corner_on_surface(long i, long j, const Vec3& x, double above) const {
+        const auto* zs = z_.at(i, j);
+        return zs && std::any_of(zs->begin(), zs->end(),
+                                 [&](double z) { return z <= x.z + above && std::abs(z - x.z) <= rise_; });
+    }
+
+    XyGrid<double> z_;  // lattice point (i, j): the heights of its samples
+    double s_, rise_;
+};
 
 struct EdgeSegment {
     Vec3 a, b;
@@ -187,10 +227,10 @@ std::vector<Vec3> face_demand(const Mesh& m, const std::vector<char>& cls, doubl
     return out;
 }
 
-// Points along an edge, a fraction of the reach apart, both ends included.
-std::vector<Vec3> edge_points(const EdgeSegment& e, double reach) {
+// Points along an edge, `step` apart, both ends included.
+std::vector<Vec3> edge_points(const EdgeSegment& e, double step) {
     std::vector<Vec3> out;
-    sample_segment(e.a, e.b, kEdgeStepOfReach * reach, out);
+    sample_segment(e.a, e.b, step, out);
     return out;
 }
 
@@ -199,7 +239,7 @@ std::vector<Vec3> edge_points(const EdgeSegment& e, double reach) {
 double coverage_reach(double sampling_distance) { return std::sqrt(0.5) * sampling_distance; }
 
 bool covers(const Vec3& sample, const Vec3& x, double reach, double critical_angle_deg) {
-    const double rise = reach * std::tan(deg_to_rad(90 - critical_angle_deg));
+    const double rise = surface_rise(reach, critical_angle_deg);
     return horizontal_distance(sample, x) <= reach && std::abs(sample.z - x.z) <= rise;
 }
 
@@ -264,63 +304,122 @@ void rasterize_triangle(const Vec3& a0, const Vec3& b0, const Vec3& c0, double s
     }
 }
 
+namespace {
+
+// The points coverage is judged on: local minima, points along rims and ridges, the faces.
+struct Demand {
+    std::vector<Vec3> minima;
+    std::vector<std::vector<Vec3>> along;  // per support edge
+    std::vector<Vec3> faces;
+};
+
+Demand coverage_demand(const Mesh& m, const std::vector<char>& cls, const std::vector<EdgeSegment>& edges,
+                       const OverhangOptions& o, double edge_step_of_reach) {
+    Demand d;
+    d.minima = local_minima(m, o);
+    d.along.resize(edges.size());
+    const double step = edge_step_of_reach * coverage_reach(o.sampling_distance);
+    for (size_t e = 0; e < edges.size(); ++e) d.along[e] = edge_points(edges[e], step);
+    d.faces = face_demand(m, cls, o.sampling_distance / kDemandRefinement);
+    return d;
+}
+
+// Adds samples where the demand is not yet covered: `needs(x, above)` says whether point x still
+// needs one, `add(x, kind)` records one (and makes it cover its neighbours). With `advance`, a rim
+// sample goes as far along the rim as still covers the first uncovered point; without, it stands
+// on that point (a top-up: its tip may be moved aside as its neighbour's was, and must still
+// cover the point).
+template <typename Needs, typename Rests, typename Add>
+void fill_demand(const Demand& d, const OverhangOptions& o, Needs needs, Rests rests, Add add, bool advance) {
+    const double lean_reach = coverage_reach(o.sampling_distance) - kReachMarginOfSpacing * o.sampling_distance;
+    // A local minimum is where an overhang starts printing: it keeps a sample of its own unless
+    // another lies within reach and no higher than half a layer above it.
+    for (const auto& x : d.minima)
+        if (needs(x, 0.5 * o.bed_height)) add(x, SampleKind::Point);
+    // Rims and ridges: at the first uncovered point, a sample as far along the edge as still
+    // covers it, so each rim sample serves the most edge it can.
+    for (const auto& pts : d.along)
+        for (size_t i = 0; i < pts.size(); ++i) {
+            if (!needs(pts[i], INFINITY)) continue;
+            size_t j = i;
+            while (advance && j + 1 < pts.size() && covers(pts[j + 1], pts[i], kEdgeAdvance * lean_reach, o.critical_angle)) ++j;
+            while (j > i && (pts[j].z < o.bed_height || rests(pts[j]))) --j;
+            add(pts[j], SampleKind::Edge);
+        }
+    // Whatever the lattice and the rims still miss inside the faces: a gap fill at the point.
+    for (const auto& x : d.faces)
+        if (needs(x, INFINITY)) add(x, SampleKind::Centroid);
+}
+
+}  // namespace
+
+void sort_top_down(std::vector<Sample>& samples) {
+    std::sort(samples.begin(), samples.end(), [](const Sample& a, const Sample& b) {
+        if (a.p.z != b.p.z) return a.p.z > b.p.z;
+        if (a.p.x != b.p.x) return a.p.x < b.p.x;
+        return a.p.y < b.p.y;
+    });
+}
+
 OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const ModelQuery* model) {
     OverhangSamples res;
     const double s = o.sampling_distance, reach = coverage_reach(s);
     auto cls = classify_faces(m, o);
     auto rests = [&](const Vec3& x) { return model && rests_on_material(*model, x, o.touching_space); };
-    auto add = [&](const Vec3& p, SampleKind kind, CoverGrid& grid) {
-        grid.add(p);
-        res.samples.push_back({p, kind});
-    };
 
     // The lattice, and what needs no sample: inside corners. A lattice point resting on material
     // below gets no contact, but the overhang is printed onto that material there and bridges
     // from it, as from an inside corner (`check` judges it so at the same lattice points).
-    CoverGrid lattice{reach, o.critical_angle}, grid{reach - kReachMarginOfSpacing * s, o.critical_angle};
+    const double lean_reach = reach - kReachMarginOfSpacing * s;
+    CoverGrid lattice{reach, o.critical_angle}, grid{lean_reach, o.critical_angle};
     for (const auto& p : lattice_samples(m, cls, s, res))
-        if (p.z >= o.bed_height) add(p, SampleKind::Face, lattice);
+        if (p.z >= o.bed_height) res.samples.push_back({p, SampleKind::Face}), lattice.add(p);
     auto edges = support_edges(m, cls, o, res);
     for (const auto& a : res.anchors) grid.add(a);
-    auto covered = [&](const Vec3& x, double above = INFINITY) { return lattice.covered(x, above) || grid.covered(x, above); };
-
-    // What coverage is judged on: local minima, rims and ridges, the faces.
-    auto minima = local_minima(m, o);
-    res.point_overhangs = minima.size();
-    std::vector<std::vector<Vec3>> along(edges.size());
-    for (size_t e = 0; e < edges.size(); ++e) along[e] = edge_points(edges[e], reach);
-    auto faces = face_demand(m, cls, s / kDemandRefinement);
+    res.point_overhangs = local_minima(m, o).size();
 
     // A point needs a sample near it unless it lies in the first layer, is covered, or rests on
     // material below (it needs none itself; off the lattice it covers nothing, since `check` may
     // judge no resting point near it).
-    auto needs = [&](const Vec3& x, double above = INFINITY) {
-        return x.z >= o.bed_height && !covered(x, above) && !rests(x);
+    auto needs = [&](const Vec3& x, double above) {
+        bool covered = lattice.covered(x, above) || grid.covered(x, above);
+        return x.z >= o.bed_height && !covered && !rests(x);
     };
-    // A local minimum is where an overhang starts printing: it keeps a sample of its own unless
-    // another lies within reach and no higher than half a layer above it.
-    for (const auto& x : minima)
-        if (needs(x, 0.5 * o.bed_height)) add(x, SampleKind::Point, grid);
-    // Rims and ridges: at the first uncovered point, a sample as far along the edge as still
-    // covers it, so each rim sample serves the most edge it can.
-    for (const auto& pts : along)
-        for (size_t i = 0; i < pts.size(); ++i) {
-            if (!needs(pts[i])) continue;
-            size_t j = i;
-            while (j + 1 < pts.size() && covers(pts[j + 1], pts[i], kEdgeAdvance * (reach - kReachMarginOfSpacing * s), o.critical_angle)) ++j;
-            while (j > i && (pts[j].z < o.bed_height || rests(pts[j]))) --j;
-            add(pts[j], SampleKind::Edge, grid);
-        }
-    // Whatever the lattice and the rims still miss inside the faces: a gap fill at the point.
-    for (const auto& x : faces)
-        if (needs(x)) add(x, SampleKind::Centroid, grid);
-
-    std::sort(res.samples.begin(), res.samples.end(), [](const Sample& a, const Sample& b) {
-        if (a.p.z != b.p.z) return a.p.z > b.p.z;
-        if (a.p.x != b.p.x) return a.p.x < b.p.x;
-        return a.p.y < b.p.y;
-    });
+    fill_demand(coverage_demand(m, cls, edges, o, kEdgeStepOfReach), o, needs, rests, [&](const Vec3& x, SampleKind kind) {
+        grid.add(x);
+        res.samples.push_back({x, kind});
+    }, true);
+    sort_top_down(res.samples);
     return res;
+}
+
+std::vector<Sample> top_up_samples(const Mesh& m, const OverhangOptions& o, const ModelQuery* model,
+                                   const std::vector<Vec3>& coverers) {
+    OverhangSamples res;
+    const double s = o.sampling_distance, reach = coverage_reach(s);
+    auto cls = classify_faces(m, o);
+    auto rests = [&](const Vec3& x) { return model && rests_on_material(*model, x, o.touching_space); };
+    const double lean_reach = reach - kReachMarginOfSpacing * s;
+    CoverGrid grid{lean_reach, o.critical_angle};
+    LatticeCells cells{s, surface_rise(reach, o.critical_angle)};
+    // A coverer still on its lattice point completes a full cell, as its sample did.
+    auto on_lattice = [&](double v) { return std::abs(v - s * std::round(v / s)) <= 1e-9 * std::max(1.0, std::abs(v)); };
+    for (const auto& c : coverers) {
+        grid.add(c);
+        if (on_lattice(c.x) && on_lattice(c.y)) cells.add(c);
+    }
+    auto edges = support_edges(m, cls, o, res);
+    for (const auto& a : res.anchors) grid.add(a);
+    std::vector<Sample> out;
+    auto needs = [&](const Vec3& x, double above) {
+        return x.z >= o.bed_height && !cells.full_cell_around(x, above) && !grid.covered(x, above) && !rests(x);
+    };
+    fill_demand(coverage_demand(m, cls, edges, o, kStrictEdgeStepOfReach), o, needs, rests, [&](const Vec3& x, SampleKind kind) {
+        grid.add(x);
+        out.push_back({x, kind});
+    }, false);
+    sort_top_down(out);
+    return out;
 }
 
 }  // namespace cs

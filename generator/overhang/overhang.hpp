@@ -14,6 +14,10 @@
 // a wall going down need no sample and cover their neighbours within reach. Points with material
 // within touching space below need no sample; lattice points among them cover their neighbours
 // (the overhang bridges from the material there), other points do not.
+// Coverage is judged on fine demand points (the lattice refined 16 times, rims at an eighth of the
+// reach), each within the reach less half their spacing, so the points between them are covered
+// too; only inside a lattice cell whose four corners all carry a sample on the same surface does
+// the lattice cover at the full reach (there every point is within reach of a corner).
 #pragma once
 
 #include <vector>
@@ -38,6 +42,7 @@ struct OverhangSamples {
                                   // wall carries the overhang there (no support needed)
     double overhang_area = 0;     // area of faces needing support (mm^2)
     std::size_t overhang_faces = 0, ridge_edges = 0, point_overhangs = 0;
+    std::size_t topped_up = 0;    // samples added where built supports left a point beyond reach
 };
 
 struct OverhangOptions {
@@ -75,5 +80,17 @@ void rasterize_triangle(const Vec3& a, const Vec3& b, const Vec3& c, double spac
 // All support points of the placed model. With `model` (an index of the same mesh), points resting
 // on material below need no sample; without it every point is judged as hanging in the air.
 OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const ModelQuery* model = nullptr);
+
+// Sorts samples as sample_overhangs does: top down, ties by x then y (deterministic).
+void sort_top_down(std::vector<Sample>& samples);
+
+// Samples to add where the supports as built leave an overhang point uncovered. `coverers` are
+// the points that hold the overhang up, each at the height of the overhang it holds: a placed
+// contact (a tip's top moved aside from its sample under a curved overhang, a pillar moved off a
+// wall) and every sample that got no contact of its own (it rests on material, or was given up).
+// The same demand and the same rules as sample_overhangs; a coverer still on its lattice point
+// counts as that lattice point. Sorted as sample_overhangs sorts; empty when all is covered.
+std::vector<Sample> top_up_samples(const Mesh& m, const OverhangOptions& o, const ModelQuery* model,
+                                   const std::vector<Vec3>& coverers);
 
 }  // namespace cs

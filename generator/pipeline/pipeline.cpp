@@ -1,10 +1,12 @@
 #include "pipeline/pipeline.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <tuple>
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -102,8 +104,11 @@ Supports build_supports(const Mesh& placed, const std::vector<Sample>& samples, 
 
 Supports build_supports(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
                         const std::vector<int>& omit) {
+    return finish_supports(grow_tree(q, samples, p), p, omit);
+}
+
+Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit) {
     Supports s;
-    SupportTree grown = grow_tree(q, samples, p);
     s.grown_struts = grown.struts;
     s.sized = size_struts(prune_struts(std::move(grown), omit), p);
     s.bodies = build_bodies(s.sized, p);
@@ -151,16 +156,40 @@ SupportTree prune_struts(SupportTree t, const std::vector<int>& omit) {
     return t;
 }
 
+namespace {
+
+// Would the tip under sample s stand in one of the user's support blockers?
+bool in_blocker(const Vec3& s, const std::vector<Box3>& blockers, const Params& p) {
+    const double tip = p.gap + p.tip_length, tip_width = std::max(p.tip_diameter, p.d_min);
+    return sweep_meets_boxes(s, s - Vec3{0, 0, tip}, tip_width, 0, blockers);
+}
+
+// What holds each sample's overhang up, at the height of that overhang: a live leaf's tip top, a
+// pillar's top, else the sample itself (it rests on material, is bridged, or was given up: where
+// no strut fits, more samples next to it would be given up too).
+std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samples) {
+    std::vector<Vec3> out, carried;
+    for (const auto& n : t.nodes) {
+        if (n.kind == NodeKind::Leaf) out.push_back({n.tip.x, n.tip.y, n.contact.z});
+        if (n.kind == NodeKind::Leaf) carried.push_back(n.contact);
+    }
+    for (const auto& pl : t.pillars) out.push_back({pl.top.x, pl.top.y, pl.sample.z}), carried.push_back(pl.sample);
+    auto before = [](const Vec3& a, const Vec3& b) { return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z); };
+    std::sort(carried.begin(), carried.end(), before);
+    for (const auto& s : samples)
+        if (!std::binary_search(carried.begin(), carried.end(), s.p, before)) out.push_back(s.p);
+    return out;
+}
+
+}  // namespace
+
 // How far from the model a support point may be given: it is picked by eye from a picture or
 // from the coordinates in the .scad, and snapped onto the nearest point of the model.
 constexpr double kSupportPointSnap = 2.0;
 
 std::vector<Sample> edited_samples(const ModelQuery& model, std::vector<Sample> samples, const ManualEdits& edits,
                                    const Params& p) {
-    const double tip = p.gap + p.tip_length, tip_width = std::max(p.tip_diameter, p.d_min);
-    auto blocked = [&](const Vec3& s) {
-        return sweep_meets_boxes(s, s - Vec3{0, 0, tip}, tip_width, 0, edits.blockers);
-    };
+    auto blocked = [&](const Vec3& s) { return in_blocker(s, edits.blockers, p); };
     std::erase_if(samples, [&](const Sample& s) { return blocked(s.p); });
     for (const Vec3& given : edits.support_points) {
         auto where = fmt::format("support point [{}, {}, {}]", given.x, given.y, given.z);
@@ -174,11 +203,7 @@ std::vector<Sample> edited_samples(const ModelQuery& model, std::vector<Sample> 
         if (blocked(on)) throw ParameterError(where + " lies in a support blocker");
         samples.push_back({on, SampleKind::Point});
     }
-    std::sort(samples.begin(), samples.end(), [](const Sample& a, const Sample& b) {
-        if (a.p.z != b.p.z) return a.p.z > b.p.z;
-        if (a.p.x != b.p.x) return a.p.x < b.p.x;
-        return a.p.y < b.p.y;
-    });
+    sort_top_down(samples);
     return samples;
 }
 
@@ -259,7 +284,22 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         r.samples.samples = edited_samples(*query, std::move(r.samples.samples), job.edits, p);
         r.blocked_samples = before + job.edits.support_points.size() - r.samples.samples.size();
     }
-    r.supports = sw.time("tree", progress, [&] { return build_supports(*query, r.samples.samples, p, job.edits.omit_struts); });
+    SupportTree grown = sw.time("tree", progress, [&] { return grow_tree(*query, r.samples.samples, p); });
+    // Where tips and pillars stand aside from their samples, the overhang between them may be left
+    // beyond reach: a sample there, and the tree grown again (once; new tips cover their own points).
+    auto extra = sw.time("coverage top-up", progress, [&] {
+        auto more = top_up_samples(r.model, oo, query.get(), coverers(grown, r.samples.samples));
+        std::erase_if(more, [&](const Sample& s) { return in_blocker(s.p, job.edits.blockers, p); });
+        return more;
+    });
+    if (!extra.empty()) {
+        r.samples.topped_up = extra.size();
+        r.samples.samples.insert(r.samples.samples.end(), extra.begin(), extra.end());
+        sort_top_down(r.samples.samples);
+        grown = sw.time("tree again", progress, [&] { return grow_tree(*query, r.samples.samples, p); });
+    }
+    // The user's omitted struts are numbered in the final tree (the one the .scad shows).
+    r.supports = sw.time("struts", progress, [&] { return finish_supports(std::move(grown), p, job.edits.omit_struts); });
     Params columns = p;
     columns.strategy = Strategy::columns;
     r.columns = sw.time("columns baseline", progress, [&] { return build_supports(*query, r.samples.samples, columns); });

@@ -87,6 +87,9 @@ Supports build_supports(const Mesh& placed, const std::vector<Sample>& samples, 
 // grown tree) are pruned with their branches before sizing.
 Supports build_supports(const ModelQuery& placed, const std::vector<Sample>& samples, const Params& p,
                         const std::vector<int>& omit = {});
+// Sizes a grown tree into supports: struts in `omit` (indices into `grown`) are pruned with their
+// branches first.
+Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit = {});
 
 // The tree without the struts in `omit` and everything that hangs from them (the struts above, up
 // to the leaves). Nodes keep their indices; those left without a strut become Dropped. Throws

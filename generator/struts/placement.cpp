@@ -189,24 +189,23 @@ Vec3 contact_under_tip(const ModelQuery& model, const Vec3& contact, double from
     return {contact.x, contact.y, std::max(contact.z, fl.z)};
 }
 
-Vec3 place_tip_top(const ModelQuery& model, const Vec3& sample, const Params& p) {
+std::optional<Vec3> place_tip_top(const ModelQuery& model, const Vec3& sample, const Params& p) {
     // Rays start a tip's length below the gap, under the overhang.
     const double start = sample.z - p.gap - p.tip_length;
-    std::optional<Vec3> least;
-    double least_drop = INFINITY;
+    bool ceiling = false;
     for (const auto& off : nearby_offsets()) {
         const Vec3 c{sample.x + off.x, sample.y + off.y, start};
         auto drop = ceiling_drop(model, square_points(c, p.tip_diameter), sample.z);
-        if (!drop) continue;
+        ceiling = ceiling || drop;
+        if (!drop || *drop > allowed_drop(p)) continue;
         Vec3 top{c.x, c.y, sample.z - p.gap - *drop};
         // A corner of the top in the model (the overhang's edge turning down beside the sample)
         // is no place for a tip.
-        if (!square_is_clear(model, top, p.tip_diameter)) continue;
-        if (*drop <= allowed_drop(p)) return top;
-        if (*drop < least_drop) least_drop = *drop, least = top;
+        if (square_is_clear(model, top, p.tip_diameter)) return top;
     }
-    Vec3 top = least ? *least : sample - Vec3{0, 0, p.gap};
-    return {top.x, top.y, std::max(top.z, sample.z - p.gap - allowed_drop(p))};
+    // Nothing above at all (a point given in open air): no gap to keep but the sample's own.
+    if (!ceiling) return sample - Vec3{0, 0, p.gap};
+    return std::nullopt;
 }
 
 }  // namespace cs

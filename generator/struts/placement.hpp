@@ -39,8 +39,9 @@ PillarPlacement fit_pillar(const ModelQuery& model, const Vec3& sample, const Pa
 // (tip_diameter wide) would come nearer a sloping overhang than the gap. Under a curved overhang
 // (the crown of a round hole) a square straight below the sample may need more lowering than a
 // contact allows; the top then moves towards the flatter side, so its corners keep the gap.
-// Falls back to the least lowering, limited to what a contact allows.
-Vec3 place_tip_top(const ModelQuery& model, const Vec3& sample, const Params& p);
+// nullopt where no square near the sample keeps the gap within what a contact allows (a sample
+// on a knife edge or in a crevice narrower than a tip): a tip there would be built into the model.
+std::optional<Vec3> place_tip_top(const ModelQuery& model, const Vec3& sample, const Params& p);
 
 // Where the upside-down tip under a strut onto the model stands: the model point `contact`,
 // raised to the highest point of the model under any corner of the tip's foot (tip_diameter wide;

@@ -65,13 +65,14 @@ bool can_escape(const ModelQuery& model, const Params& p, const ConeFan& fan, co
         double len = std::min(kTreeTuning.escape_length, a.z / -d.z);
         Vec3 to = a + d * len;
         double wb = std::max(w, eqn1_width(p, len, angle_from_vertical_deg(a, to)));
-        if (strut_is_clear(model, a, w, to, wb, 0.0)) return true;
+        if (strut_is_clear(model, a, w, to, wb, p.gap)) return true;
     }
     return false;
 }
 
 Vec3 leaf_position(const ModelQuery& model, const Params& p, double tan_c, const Vec3& below) {
-    const double need = 0.5 * p.d_min + p.model_clearance + 0.05;
+    // The strut is square: its corners stand half a diagonal from its axis, whichever way the wall is.
+    const double need = 0.5 * std::sqrt(2.0) * p.d_min + p.model_clearance + 0.05;
     double d = std::sqrt(model.squared_distance(below));
     if (d >= need) return below;
     Vec3 away = below - model.closest_point(below);

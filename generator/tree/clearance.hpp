@@ -28,8 +28,9 @@ bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec
 bool enters_keep_out(const Params& p, const Vec3& a, const Vec3& b, double wb);
 
 // Can a strut of width w leave point a at all: is a short strut (kTreeTuning.escape_length) along
-// some fan direction clear? Asked of leaves, merge points and bends before they are made, so no
-// node is put where nothing can carry it down.
+// some fan direction clear, with the z gap's air around it (nearer, it would print fused to the
+// model)? Asked of leaves, merge points and bends before they are made, so no node is put where
+// nothing can carry it down.
 bool can_escape(const ModelQuery& model, const Params& p, const ConeFan& fan, const Vec3& a, double w);
 
 // Where a leaf hangs below its tip's foot `below`: there, unless the model is too close beside it

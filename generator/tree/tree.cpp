@@ -22,7 +22,7 @@ class Sweep {
 public:
     Sweep(const ModelQuery& model, const Params& p)
         : model_(model), p_(p), fan_(p.critical_angle), cx_{model, p, fan_, tree()},
-          released_nodes_(std::max(2.0 * p.sampling_distance, 1.0)), active_nodes_(std::max(2.0 * p.sampling_distance, 1.0)) {}
+          active_nodes_(std::max(2.0 * p.sampling_distance, 1.0)) {}
 
     SupportTree run(const std::vector<Sample>& samples) {
         hang_leaves(samples);
@@ -34,6 +34,7 @@ public:
             support(id);
         }
         std::erase_if(t_.struts, [](const Strut& s) { return s.top < 0; });  // dropped branches
+        space_feet();
         count_from_tree();
         return std::move(t_);
     }
@@ -51,6 +52,23 @@ private:
         t_.stats.pillars = t_.pillars.size();
     }
 
+    // Feet of columns on the bed side by side (leaves gone down alone, at the sample spacing) may
+    // come near each other but not into each other: a foot's room reaches at most half way to the
+    // next, plus the air a foot keeps from the model (struts/foot_extra takes that off again).
+    void space_feet() {
+        XyGrid<int> beds(std::max(2.0 * p_.sampling_distance, 1.0));
+        for (int v = 0; v < static_cast<int>(t_.nodes.size()); ++v)
+            if (t_.nodes[v].kind == NodeKind::Bed) beds.insert(t_.nodes[v].p, v);
+        const double keep = std::sqrt(2.0) * p_.model_clearance - kTreeTuning.feet_apart;
+        for (int v = 0; v < static_cast<int>(t_.nodes.size()); ++v) {
+            Node& n = t_.nodes[v];
+            if (n.kind != NodeKind::Bed) continue;
+            beds.visit_near(n.p, 2, [&](int u) {
+                if (u != v) n.room = std::min(n.room, 0.5 * horizontal_distance(n.p, t_.nodes[u].p) + keep);
+            });
+        }
+    }
+
     int add_node(const Vec3& p, NodeKind kind, const Vec3& contact, double width) {
         Node n;
         n.p = p, n.kind = kind, n.contact = contact;
@@ -62,16 +80,17 @@ private:
         retries_.push_back(0);
         banned_.emplace_back();
         alone_.push_back(0);
+        failed_bends_.emplace_back();
         return static_cast<int>(t_.nodes.size()) - 1;
     }
     void activate(int id) {
         active_[id] = 1;
-        if (alone_[id] < kSolo) pool(id).insert(id, t_.nodes[id].p);
+        if (!alone_[id]) active_nodes_.insert(id, t_.nodes[id].p);
         heap_.push({t_.nodes[id].p.z, -id});
     }
     void retire(int id) {
         active_[id] = 0;
-        if (alone_[id] < kSolo) pool(id).remove(id, t_.nodes[id].p);
+        if (!alone_[id]) active_nodes_.remove(id, t_.nodes[id].p);
     }
     void connect(int top, int bottom) {
         in_struts_[bottom].push_back(static_cast<int>(t_.struts.size()));
@@ -112,7 +131,13 @@ private:
                 t_.stats.dropped += fit == PillarFit::NoRoom;
                 continue;
             }
-            const Vec3 top = place_tip_top(model_, s.p, p_);
+            const auto placed_top = place_tip_top(model_, s.p, p_);
+            if (!placed_top) {  // no tip fits under it without reaching into the model
+                add_node(s.p - Vec3{0, 0, tip}, NodeKind::Dropped, s.p, p_.d_min);
+                ++t_.stats.dropped;
+                continue;
+            }
+            const Vec3 top = *placed_top;
             Vec3 at = leaf_position(model_, p_, fan_.tan_c, {top.x, top.y, s.p.z - tip});
             // A tip that would graze the model beside it moves its foot a little where it is clear.
             if (auto clear = clear_tip_foot(model_, at, top, p_); clear && can_escape(*clear, p_.d_min)) at = *clear;
@@ -138,6 +163,7 @@ private:
         if (placed.fit == PillarFit::Fits && sweep_meets_boxes(placed.pillar.top, placed.pillar.bottom, p_.d_min, 0, p_.keep_out))
             return PillarFit::NoRoom;  // it would stand in a user's blocker
         if (placed.fit == PillarFit::Fits) {
+            placed.pillar.sample = sample;
             t_.pillars.push_back(placed.pillar);
         }
         return placed.fit;
@@ -160,9 +186,34 @@ private:
     }
 
     bool clear(int from, const Vec3& to, double clearance = -1, bool onto_model = false) const {
+        const double air = clearance < 0 ? p_.model_clearance : clearance;
         return !enters_keep_out(p_, t_.nodes[from].p, to, bottom_width(from, to)) &&
-               strut_is_clear(model_, t_.nodes[from].p, top_width(from, to), to, bottom_width(from, to),
-                              clearance < 0 ? p_.model_clearance : clearance, onto_model, joint_overlap(p_));
+               strut_is_clear(model_, t_.nodes[from].p, top_width(from, to), to, bottom_width(from, to), air,
+                              onto_model, joint_overlap(p_)) &&
+               run_stays_clear(from, to, std::min(air, p_.gap));
+    }
+    // A strut on from a bend lengthens the bend's run, and the strength rule widens the whole run
+    // as one column (struts/): the struts above in the run must still clear the model at that
+    // width by the z gap (nearer, they print fused to it).
+    bool run_stays_clear(int from, const Vec3& to, double air) const {
+        if (t_.nodes[from].kind != NodeKind::Chain) return true;
+        const double run = run_[from] + distance(t_.nodes[from].p, to);
+        double angle = angle_from_vertical_deg(t_.nodes[from].p, to);
+        std::vector<int> above;
+        for (int v = from; v >= 0 && t_.nodes[v].kind == NodeKind::Chain && in_struts_[v].size() == 1;) {
+            const int e = in_struts_[v][0];
+            above.push_back(e);
+            v = t_.struts[e].top;
+        }
+        for (int e : above)
+            angle = std::max(angle, angle_from_vertical_deg(t_.nodes[t_.struts[e].top].p, t_.nodes[t_.struts[e].bottom].p));
+        for (int e : above) {
+            const Vec3 &a = t_.nodes[t_.struts[e].top].p, &b = t_.nodes[t_.struts[e].bottom].p;
+            const EndWidths w = strut_end_widths(p_, width_[t_.struts[e].top], run, angle, distance(a, b),
+                                                 angle_from_vertical_deg(a, b));
+            if (!strut_is_clear(model_, a, w.top, b, w.bottom, air, false, joint_overlap(p_))) return false;
+        }
+        return true;
     }
     bool can_escape(const Vec3& a, double w) const { return cs::can_escape(model_, p_, fan_, a, w); }
     bool clear(int from, const Candidate& c, double clearance = -1) const {
@@ -171,13 +222,25 @@ private:
         return clear(from, c.point, clearance, c.type == Target::Model);  // a steep face: no relief
     }
     void support(int id) {
+        if (find_way_down(id)) return;
+        // Nothing fits here. First undo what was joined into this node, so the branches above try
+        // again elsewhere (a merge made a node too wide for where it hangs); after that, break up
+        // the branches above it: each leaf goes down again alone. A leaf that cannot get down alone
+        // is dropped rather than printed fused into the model; the report counts the samples lost
+        // and `check` judges whether their neighbours still cover them.
+        if (undo_joins(id)) return;
+        release_branches(id);
+    }
+
+    // Takes the cheapest clear strut down from node `id`, a bend, or a tight fit; false if none.
+    bool find_way_down(int id) {
         std::vector<Candidate> cands;
         collect_contacts(cx_, t_.nodes[id].p, INFINITY, nullptr, &fan_.vertical_only, cands);
         // The columns baseline is what plain slicer supports do: straight down to whatever is
         // below, the model or the bed, no questions asked (unless the model is off limits).
         if (!tree() && !cands.empty() && (p_.supports_on_model || cands[0].type == Target::Bed)) {
             accept(id, cands[0]);
-            return;
+            return true;
         }
         // Less of a drop than straight down is all that can win: the fan only looks as far as a
         // slanted ray can go within that drop at first.
@@ -186,36 +249,34 @@ private:
         collect_contacts(cx_, t_.nodes[id].p, bound / fan_.cos_min, &skipped, &fan_.slanted_only, cands);
         bound = INFINITY;
         for (const auto& c : cands) bound = std::min(bound, c.span);
-        if (tree() && alone_[id] < kSolo) collect_merges(cx_, pool(id), t_.nodes, id, banned_[id], bound * (1 + 1e-9), cands);
+        if (tree() && !alone_[id]) collect_merges(cx_, active_nodes_, t_.nodes, id, banned_[id], bound * (1 + 1e-9), cands);
         by_cost(cands);
-        if (take_first_clear(id, cands)) return;
+        if (take_first_clear(id, cands)) return true;
         // Nothing near fits: the farther fan (slanted landings beyond the vertical's reach).
         std::vector<Candidate> far;
         collect_contacts(cx_, t_.nodes[id].p, INFINITY, nullptr, &skipped, far);
         by_cost(far);
-        if (take_first_clear(id, far)) return;
+        if (take_first_clear(id, far)) return true;
         cands.insert(cands.end(), far.begin(), far.end());
         by_cost(cands);
-        if (step_down(id)) return;
-        // In a tight spot, give up the extra air before giving up clearance altogether.
+        if (step_down(id)) return true;
+        // In a tight spot, give up the extra air, down to the z gap: nearer than that, a strut
+        // prints fused to the model.
+        return take_tight(id, cands, p_.gap);
+    }
+
+    // The first candidate, or else a step down, clear with only `air` around the strut.
+    bool take_tight(int id, const std::vector<Candidate>& cands, double air) {
         for (const auto& c : cands) {
-            if (!clear(id, c, 0.0)) continue;
-            if (c.type == Target::Merge && !clear(c.other, c.point, 0.0)) continue;
+            if (!clear(id, c, air)) continue;
+            if (c.type == Target::Merge && !clear(c.other, c.point, air)) continue;
             ++t_.stats.tight;
             accept(id, c);
-            return;
+            return true;
         }
-        if (step_down(id, 0.0)) {
-            ++t_.stats.tight;
-            return;
-        }
-        // Nothing fits here. First undo what was joined into this node, so the branches above try
-        // again elsewhere (a merge made a node too wide for where it hangs); after that, break up
-        // the branches above it: each leaf goes down again alone. A leaf that cannot get down alone
-        // is dropped rather than printed fused into the model; the report counts the samples lost
-        // and `check` judges whether their neighbours still cover them.
-        if (undo_joins(id)) return;
-        release_branches(id);
+        if (!step_down(id, air)) return false;
+        ++t_.stats.tight;
+        return true;
     }
 
     // Detaches the struts ending at `id` and sends the nodes above back to the sweep, barred from
@@ -226,6 +287,7 @@ private:
             int parent = t_.struts[e].top;
             t_.struts[e] = {-1, -1};
             banned_[parent].push_back(id);
+            if (t_.nodes[id].kind == NodeKind::Chain) failed_bends_[parent].push_back(t_.nodes[id].p);
             retries_[parent] = std::max(retries_[parent], retries_[id]) + 1;  // strictly more: it ends
             if (t_.nodes[id].kind != NodeKind::Chain && t_.stats.merges > 0) --t_.stats.merges;
             activate(parent);
@@ -262,8 +324,8 @@ private:
                 t_.struts[e] = {-1, -1};
             }
             in_struts_[v].clear();
-            if (t_.nodes[v].kind == NodeKind::Leaf && alone_[v] < kSolo) {
-                restart_released(v);
+            if (t_.nodes[v].kind == NodeKind::Leaf && !alone_[v]) {
+                restart_alone(v);
                 continue;
             }
             if (t_.nodes[v].kind == NodeKind::Leaf) ++lost;
@@ -272,8 +334,8 @@ private:
         t_.stats.dropped += lost;
         t_.stats.dropped_branches += lost > 0;
     }
-    void restart_released(int leaf) {
-        ++alone_[leaf];
+    void restart_alone(int leaf) {
+        alone_[leaf] = 1;
         width_[leaf] = p_.d_min;
         run_[leaf] = 0;
         activate(leaf);
@@ -297,7 +359,6 @@ private:
                 retire(c.other);
                 int s = add_node(c.point, NodeKind::Merge, {}, w);
                 retries_[s] = std::max(retries_[id], retries_[c.other]);
-                alone_[s] = alone_[id];
                 connect(id, s);
                 connect(c.other, s);
                 activate(s);
@@ -329,6 +390,7 @@ private:
         Vec3 best;
         const TreeTuning& k = kTreeTuning;
         for (const auto& d : fan_.dirs) {
+            if (passes_failed_bend(id, a, d)) continue;
             auto hit = model_.first_hit(a, d);
             double margin = 0.5 * width_[id] + p_.model_clearance + p_.d_min;
             double len = hit ? hit->distance - margin / std::max(k.step_min_cos, -d.z) : a.z / -d.z;
@@ -356,6 +418,13 @@ private:
         return true;
     }
 
+    bool passes_failed_bend(int id, const Vec3& a, const Vec3& d) const {
+        const Vec3 far = a + d * kTreeTuning.step_reach;
+        return std::any_of(failed_bends_[id].begin(), failed_bends_[id].end(), [&](const Vec3& f) {
+            return point_segment_distance(f, a, far) < kTreeTuning.failed_bend_radius;
+        });
+    }
+
     const ModelQuery& model_;
     const Params& p_;
     ConeFan fan_;
@@ -367,12 +436,8 @@ private:
     std::vector<double> run_;  // bends: length of the unbranched run above them
     std::vector<int> retries_;               // how often a node was sent back by undo_joins
     std::vector<std::vector<int>> banned_;   // nodes a node may not join again
-    // How often a leaf was released from a dead end: once, it merges only with others released
-    // once (the trunk that failed is not rebuilt); twice, it goes down alone. Its struts inherit it.
-    static constexpr char kReleased = 1, kSolo = 2;
-    std::vector<char> alone_;
-    ActiveNodes& pool(int id) { return alone_[id] == kReleased ? released_nodes_ : active_nodes_; }
-    ActiveNodes released_nodes_;
+    std::vector<char> alone_;  // released from a dead end: merges with no one (its bends inherit it)
+    std::vector<std::vector<Vec3>> failed_bends_;  // bends below a node that led to dead ends
     ActiveNodes active_nodes_;
     std::priority_queue<std::pair<double, int>> heap_;  // highest first, then lowest id
 };

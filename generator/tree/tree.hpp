@@ -39,7 +39,7 @@ struct Node {
     NodeKind kind = NodeKind::Leaf;
     Vec3 contact;  // Leaf: the overhang sample; ModelContact: the model point below
     Vec3 tip;      // Leaf: top of its tip, a z gap below the model (more under a slope)
-    double room = INFINITY;  // Bed: horizontal distance to the model near the bed (limits a foot)
+    double room = INFINITY;  // Bed: horizontal room for a foot: to the model, or half way to the next foot
 };
 
 struct Strut {
@@ -51,6 +51,7 @@ struct Pillar {
     Vec3 top;     // one gap below the overhang sample
     Vec3 bottom;  // on the bed, or one gap above the model
     bool on_model = false;
+    Vec3 sample;  // the overhang sample it carries (the top may stand beside it, off a wall)
 };
 
 struct TreeStats {

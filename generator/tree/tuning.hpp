@@ -46,6 +46,12 @@ struct TreeTuning {
     double step_min_drop = 0.5;  // a bend must descend at least this (mm), or the sweep would crawl
     double step_min_cos = 0.2;   // floor of the ray's cosine when converting a margin to a length
                                  // (keeps near-horizontal rays from backing off without limit)
+    // A bend that led to a dead end is not tried again: its node's retry skips every ray passing
+    // within this much (mm) of it (a strut width: a bend that near would end in the same pocket).
+    double failed_bend_radius = 1.0;
+    // Neighbouring feet on the bed stay at least this far apart (mm), so no two share a corner
+    // (the supports mesh would not be a set of closed solids where they did).
+    double feet_apart = 0.05;
 
     // ---- prices of the slicer cost model (tree/slicer_cost.hpp), for CuraEngine 4.13 with the
     // bench profile (0.2 mm layers, acceleration 1500 mm/s^2, support as a support mesh with one

@@ -87,18 +87,26 @@ bool covered_by(const std::vector<Vec3>& supports, const Vec3& x, const Overhang
 }
 
 // Overhang points judged far more densely than the sampler looks: a sixteenth of the spacing inside
-// faces, every corner and centroid, and every overhang face's edges at a thirty-second.
-std::vector<Vec3> dense_overhang_points(const Mesh& m, const OverhangOptions& o) {
+// faces, every corner and centroid, and every overhang face's edges at a thirty-second. With
+// `between`, also that lattice shifted by half its step (the points between any two of the
+// sampler's refined lattice, where a gap would hide) and edges at a 128th.
+std::vector<Vec3> dense_overhang_points(const Mesh& m, const OverhangOptions& o, bool between = false) {
     auto cls = classify_faces(m, o);
     std::vector<Vec3> pts;
+    const double h = o.sampling_distance / 16;
+    const Vec3 half{0.5 * h, 0.5 * h, 0};
     for (size_t i = 0; i < m.faces.size(); ++i) {
         if (!cls[i]) continue;
         const auto& f = m.faces[i];
-        rasterize_triangle(m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], o.sampling_distance / 16, pts);
+        rasterize_triangle(m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]], h, pts);
+        std::vector<Vec3> shifted;
+        if (between)
+            rasterize_triangle(m.vertices[f[0]] - half, m.vertices[f[1]] - half, m.vertices[f[2]] - half, h, shifted);
+        for (const auto& q : shifted) pts.push_back(q + half);
         pts.push_back((m.vertices[f[0]] + m.vertices[f[1]] + m.vertices[f[2]]) / 3.0);
         for (int k = 0; k < 3; ++k) {
             const Vec3 &a = m.vertices[f[k]], &b = m.vertices[f[(k + 1) % 3]];
-            int n = std::max(1, static_cast<int>(std::ceil(distance(a, b) / (o.sampling_distance / 32))));
+            int n = std::max(1, static_cast<int>(std::ceil(distance(a, b) / (o.sampling_distance / (between ? 128 : 32)))));
             for (int t = 0; t <= n; ++t) pts.push_back(a + (b - a) * (double(t) / n));
         }
     }
@@ -107,11 +115,11 @@ std::vector<Vec3> dense_overhang_points(const Mesh& m, const OverhangOptions& o)
 }
 
 // Dense overhang points with no sample or anchor covering them.
-std::vector<Vec3> uncovered(const Mesh& m, const OverhangSamples& res, const OverhangOptions& o) {
+std::vector<Vec3> uncovered(const Mesh& m, const OverhangSamples& res, const OverhangOptions& o, bool between = false) {
     std::vector<Vec3> supports = res.anchors;
     for (const auto& s : res.samples) supports.push_back(s.p);
     std::vector<Vec3> out;
-    for (const auto& x : dense_overhang_points(m, o))
+    for (const auto& x : dense_overhang_points(m, o, between))
         if (!covered_by(supports, x, o)) out.push_back(x);
     return out;
 }
@@ -138,6 +146,34 @@ Mesh uv_sphere(const Vec3& c, double r, int rings, int segments) {
             m.faces.push_back({at(i, j), at(i + 1, j + 1), at(i + 1, j)});
         }
     for (int j = 0; j < segments; ++j) m.faces.push_back({at(rings - 1, j), at(rings - 1, j + 1), top});
+    return m;
+}
+
+// A cylinder lying along x (radius r, `segments` sides, centre height zc), tilted about y by
+// `tilt` degrees and turned about z by `turn` degrees: its underside needs support up to where the
+// wall steepens past the critical angle, so the rims run through lattice cells the overhang only
+// partly fills (a round hole or shaft in a printed part).
+Mesh lying_cylinder(double r, double len, int segments, double zc, double tilt, double turn) {
+    Mesh m;
+    const double ct = std::cos(tilt * kDeg), st = std::sin(tilt * kDeg), cz = std::cos(turn * kDeg), sz = std::sin(turn * kDeg);
+    auto place = [&](double x, double y, double z) {
+        double x1 = ct * x + st * z, z1 = -st * x + ct * z;
+        return Vec3{cz * x1 - sz * y, sz * x1 + cz * y, z1 + zc};
+    };
+    for (double x : {-0.5 * len, 0.5 * len})
+        for (int j = 0; j < segments; ++j) {
+            double a = 2 * M_PI * j / segments + 0.1;
+            m.vertices.push_back(place(x, r * std::cos(a), r * std::sin(a)));
+        }
+    auto v = [&](int end, int j) { return static_cast<std::uint32_t>(end * segments + (j % segments)); };
+    for (int j = 0; j < segments; ++j) {
+        m.faces.push_back({v(0, j), v(1, j + 1), v(1, j)});
+        m.faces.push_back({v(0, j), v(0, j + 1), v(1, j + 1)});
+    }
+    for (int j = 1; j + 1 < segments; ++j) {
+        m.faces.push_back({v(0, 0), v(0, j + 1), v(0, j)});
+        m.faces.push_back({v(1, 0), v(1, j), v(1, j + 1)});
+    }
     return m;
 }
 
@@ -523,4 +559,70 @@ TEST(Rasterize, VerticalTriangleHasNoFootprint) {
     std::vector<Vec3> pts;
     rasterize_triangle({0, 0, 0}, {3, 0, 0}, {0, 0, 3}, 1.5, pts);
     EXPECT_TRUE(pts.empty());
+}
+
+// ---------------------------------------------------------------- top-up after placement
+namespace {
+
+// The samples of a flat 20 x 20 plate hanging 10 mm up, and where their tips stand: on the samples.
+struct Plate {
+    Mesh mesh = box({0, 0, 10}, {20, 20, 12});
+    OverhangOptions o = default_options();
+    std::vector<Vec3> tips;
+    Plate() {
+        for (const auto& s : sample_overhangs(mesh, o).samples) tips.push_back(s.p);
+    }
+};
+
+}  // namespace
+
+TEST(TopUp, SamplesAndTheirTopUpLeaveNoPointBeyondReach) {
+    // Judged between the sampler's own points too. The lean pass lets the lattice cover at the
+    // full reach, which a cell the overhang only partly fills (the rims of a tilted shaft) can
+    // miss by a hair; the top-up, given tips standing on their samples, closes every such gap.
+    std::vector<Mesh> shapes{cs::test::t_shape(), cs::test::bridge_shape(), uv_sphere({0.3, -0.2, 12}, 8, 14, 22),
+                             lying_cylinder(6, 30, 40, 10, 8, 17)};
+    size_t lean_gaps = 0;
+    for (double s : {1.5, 2.5})
+        for (size_t i = 0; i < shapes.size(); ++i) {
+            SCOPED_TRACE("shape " + std::to_string(i) + " spacing " + std::to_string(s));
+            OverhangOptions o{50, s, 0.2};
+            auto res = sample_overhangs(shapes[i], o);
+            lean_gaps += uncovered(shapes[i], res, o, true).size();
+            std::vector<Vec3> tips;
+            for (const auto& x : res.samples) tips.push_back(x.p);
+            for (const auto& x : top_up_samples(shapes[i], o, nullptr, tips)) res.samples.push_back(x);
+            auto holes = uncovered(shapes[i], res, o, true);
+            EXPECT_TRUE(holes.empty()) << holes.size() << " uncovered, first at " << holes[0].x << ", " << holes[0].y
+                                       << ", " << holes[0].z;
+        }
+    EXPECT_GT(lean_gaps, 0u) << "the shapes no longer show what the top-up is for";
+}
+
+TEST(TopUp, NothingToAddWhereEveryTipStandsOnItsSample) {
+    Plate plate;
+    ASSERT_GT(plate.tips.size(), 10u);
+    EXPECT_TRUE(top_up_samples(plate.mesh, plate.o, nullptr, plate.tips).empty());
+}
+
+TEST(TopUp, ATipMovedAsideGetsTheGapItLeavesFilled) {
+    // Placement moved one tip in the middle of the plate 0.6 mm aside (under a curved overhang it
+    // may): the points on its far side are now beyond reach of every tip.
+    Plate plate;
+    auto moved = std::find_if(plate.tips.begin(), plate.tips.end(), [](const Vec3& t) {
+        return std::abs(t.x - 9) < 0.8 && std::abs(t.y - 9) < 0.8;
+    });
+    ASSERT_NE(moved, plate.tips.end());
+    const Vec3 was = *moved;
+    moved->x += 0.6;
+    auto extra = top_up_samples(plate.mesh, plate.o, nullptr, plate.tips);
+    ASSERT_FALSE(extra.empty());
+    // What was added covers every point the move left open, and lies near where the tip was.
+    std::vector<Vec3> all = plate.tips;
+    for (const auto& s : extra) {
+        all.push_back(s.p);
+        EXPECT_LT(horizontal_distance(s.p, was), 2 * coverage_reach(plate.o.sampling_distance));
+    }
+    for (const auto& x : dense_overhang_points(plate.mesh, plate.o, true))
+        EXPECT_TRUE(covered_by(all, x, plate.o)) << "uncovered at " << x.x << ", " << x.y;
 }

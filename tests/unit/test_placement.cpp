@@ -91,10 +91,29 @@ TEST(PlaceTipTop, EveryCornerKeepsTheGapUnderASteppedCeiling) {
     Mesh m = box({-5, -5, 10}, {0.1, 5, 12});
     append(m, box({0.1, -5, 9.5}, {5, 5, 12}));
     ModelQuery q(m);
-    const Vec3 top = place_tip_top(q, {0, 0, 10}, p);
+    const auto placed = place_tip_top(q, {0, 0, 10}, p);
+    ASSERT_TRUE(placed);
+    const Vec3 top = *placed;
     EXPECT_GE(nearest_from_corners(q, top, p.tip_diameter, 1), p.gap - 1e-9);
     EXPECT_LE(horizontal_distance(top, {0, 0, 10}), 0.5 + 1e-9);
     EXPECT_GE(top.z, 10 - contact_tolerance(p)) << "still a contact of its sample";
+}
+
+TEST(PlaceTipTop, NoneInASlotNarrowerThanATip) {
+    // The ceiling of a 0.5 mm slot between two walls: every square a tip's width across, near the
+    // sample, has a corner in a wall. No tip is placed rather than one built into the model.
+    Params p;
+    Mesh m = box({-5, -5, 10}, {5, 5, 12});
+    append(m, box({-5, -5, 0}, {-0.25, 5, 10}));
+    append(m, box({0.25, -5, 0}, {5, 5, 10}));
+    ModelQuery q(m);
+    EXPECT_FALSE(place_tip_top(q, {0, 0, 10}, p));
+    // A slot twice as wide as a tip takes one.
+    Mesh wide = box({-5, -5, 10}, {5, 5, 12});
+    append(wide, box({-5, -5, 0}, {-p.tip_diameter, 5, 10}));
+    append(wide, box({p.tip_diameter, -5, 0}, {5, 5, 10}));
+    ModelQuery qw(wide);
+    EXPECT_TRUE(place_tip_top(qw, {0, 0, 10}, p));
 }
 
 TEST(ContactUnderTip, FootClearsTheModelOnASlope) {

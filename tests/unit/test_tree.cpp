@@ -338,6 +338,28 @@ TEST(GrowTree, BuildplateOnlyNeverLandsOnTheModel) {
     for (const auto& pl : g->tree.pillars) EXPECT_FALSE(pl.on_model);
 }
 
+TEST(GrowTree, ADeadEndLosesOnlyTheLeavesThatCannotGetDownAlone) {
+    // A U on its side, open at the front and both ends: a 27 x 30 ceiling 30 mm up, anchored on
+    // the back wall, with the U's bottom arm right under it. Buildplate-only, every branch has to
+    // leave sideways. A trunk merged under the middle of the ceiling is too wide to get out; its
+    // leaves then go down again alone, and each one finds a way (earlier the whole branch, over a
+    // hundred samples, was given up).
+    Params p;
+    p.supports_on_model = false;
+    Mesh m = cs::test::box({0, 0, 0}, {30, 30, 3});
+    append(m, cs::test::box({0, 0, 3}, {30, 3, 30}));
+    append(m, cs::test::box({0, 0, 30}, {30, 30, 33}));
+    auto g = grow(m, p);
+    expect_valid_tree(*g, p);
+    expect_every_leaf_reaches_ground(g->tree);
+    EXPECT_EQ(count_kind(g->tree, NodeKind::ModelContact), 0u);
+    EXPECT_EQ(g->tree.stats.dropped, 0u);
+    EXPECT_EQ(g->tree.stats.dropped_branches, 0u);
+    const auto& st = g->tree.stats;
+    EXPECT_EQ(count_kind(g->tree, NodeKind::Leaf), g->samples.samples.size() - st.touching - st.internal - st.bridged - g->tree.pillars.size())
+        << st.touching << " " << st.internal << " " << st.bridged << " " << g->tree.pillars.size();
+}
+
 TEST(GrowTree, NoSamplesNoTree) {
     Params p;
     Mesh m = cs::test::box({0, 0, 0}, {5, 5, 5});
