@@ -59,9 +59,9 @@ struct TreeStats {
     std::size_t internal = 0;  // samples on faces with material right below (overlapping shells)
     std::size_t steps = 0;                // bends taken to get out of a tight spot
     std::size_t tight = 0;                // struts that touch the model's clearance zone (no air)
-    std::size_t dropped = 0;              // samples given up: in crevices no strut fits through
+    std::size_t dropped = 0;              // samples given up: no tip keeps the gap, or no strut gets down
     std::size_t bridged = 0;              // under a slot too low for a pillar between its gaps: bridged
-    std::size_t dropped_branches = 0;     // nodes with nowhere to go, dropped with what they carried
+    std::size_t dropped_branches = 0;     // dead ends that lost a leaf (its leaves went down again alone)
     std::size_t undone = 0;               // joins taken back because the joined node had nowhere to go
 };
 
