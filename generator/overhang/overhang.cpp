@@ -79,6 +79,11 @@ constexpr double kEdgeAdvance = 0.98;
 constexpr double kReachMarginOfSpacing = std::numbers::sqrt2 / 2 / kDemandRefinement;
 static_assert(kStrictEdgeStepOfReach * std::numbers::sqrt2 / 2 / 2 <= kReachMarginOfSpacing + 1e-12);
 
+// The reach our own points cover with: the reach less that margin.
+double lean_reach(const OverhangOptions& o) {
+    return coverage_reach(o.sampling_distance) - kReachMarginOfSpacing * o.sampling_distance;
+}
+
 // The lattice samples by cell corner. A point inside a lattice cell whose four corners all carry
 // a sample on its surface is within reach of one of them wherever it lies in the cell, so points
 // between the demand points there are covered too. Elsewhere (a cell the overhang only partly
@@ -331,7 +336,6 @@ Demand coverage_demand(const Mesh& m, const std::vector<char>& cls, const std::v
 // cover the point).
 template <typename Needs, typename Rests, typename Add>
 void fill_demand(const Demand& d, const OverhangOptions& o, Needs needs, Rests rests, Add add, bool advance) {
-    const double lean_reach = coverage_reach(o.sampling_distance) - kReachMarginOfSpacing * o.sampling_distance;
     // A local minimum is where an overhang starts printing: it keeps a sample of its own unless
     // another lies within reach and no higher than half a layer above it.
     for (const auto& x : d.minima)
@@ -342,7 +346,7 @@ void fill_demand(const Demand& d, const OverhangOptions& o, Needs needs, Rests r
         for (size_t i = 0; i < pts.size(); ++i) {
             if (!needs(pts[i], INFINITY)) continue;
             size_t j = i;
-            while (advance && j + 1 < pts.size() && covers(pts[j + 1], pts[i], kEdgeAdvance * lean_reach, o.critical_angle)) ++j;
+            while (advance && j + 1 < pts.size() && covers(pts[j + 1], pts[i], kEdgeAdvance * lean_reach(o), o.critical_angle)) ++j;
             while (j > i && (pts[j].z < o.bed_height || rests(pts[j]))) --j;
             add(pts[j], SampleKind::Edge);
         }
@@ -370,8 +374,7 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
     // The lattice, and what needs no sample: inside corners. A lattice point resting on material
     // below gets no contact, but the overhang is printed onto that material there and bridges
     // from it, as from an inside corner (`check` judges it so at the same lattice points).
-    const double lean_reach = reach - kReachMarginOfSpacing * s;
-    CoverGrid lattice{reach, o.critical_angle}, grid{lean_reach, o.critical_angle};
+    CoverGrid lattice{reach, o.critical_angle}, grid{lean_reach(o), o.critical_angle};
     for (const auto& p : lattice_samples(m, cls, s, res))
         if (p.z >= o.bed_height) res.samples.push_back({p, SampleKind::Face}), lattice.add(p);
     auto edges = support_edges(m, cls, o, res);
@@ -399,8 +402,7 @@ std::vector<Sample> top_up_samples(const Mesh& m, const OverhangOptions& o, cons
     const double s = o.sampling_distance, reach = coverage_reach(s);
     auto cls = classify_faces(m, o);
     auto rests = [&](const Vec3& x) { return model && rests_on_material(*model, x, o.touching_space); };
-    const double lean_reach = reach - kReachMarginOfSpacing * s;
-    CoverGrid grid{lean_reach, o.critical_angle};
+    CoverGrid grid{lean_reach(o), o.critical_angle};
     LatticeCells cells{s, surface_rise(reach, o.critical_angle)};
     // A coverer still on its lattice point completes a full cell, as its sample did.
     auto on_lattice = [&](double v) { return std::abs(v - s * std::round(v / s)) <= 1e-9 * std::max(1.0, std::abs(v)); };

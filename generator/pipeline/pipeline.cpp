@@ -169,10 +169,8 @@ bool in_blocker(const Vec3& s, const std::vector<Box3>& blockers, const Params& 
 // no strut fits, more samples next to it would be given up too).
 std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samples) {
     std::vector<Vec3> out, carried;
-    for (const auto& n : t.nodes) {
-        if (n.kind == NodeKind::Leaf) out.push_back({n.tip.x, n.tip.y, n.contact.z});
-        if (n.kind == NodeKind::Leaf) carried.push_back(n.contact);
-    }
+    for (const auto& n : t.nodes)
+        if (n.kind == NodeKind::Leaf) out.push_back({n.tip.x, n.tip.y, n.contact.z}), carried.push_back(n.contact);
     for (const auto& pl : t.pillars) out.push_back({pl.top.x, pl.top.y, pl.sample.z}), carried.push_back(pl.sample);
     auto before = [](const Vec3& a, const Vec3& b) { return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z); };
     std::sort(carried.begin(), carried.end(), before);

@@ -204,9 +204,8 @@ private:
             const int e = in_struts_[v][0];
             above.push_back(e);
             v = t_.struts[e].top;
+            angle = std::max(angle, angle_from_vertical_deg(t_.nodes[v].p, t_.nodes[t_.struts[e].bottom].p));
         }
-        for (int e : above)
-            angle = std::max(angle, angle_from_vertical_deg(t_.nodes[t_.struts[e].top].p, t_.nodes[t_.struts[e].bottom].p));
         for (int e : above) {
             const Vec3 &a = t_.nodes[t_.struts[e].top].p, &b = t_.nodes[t_.struts[e].bottom].p;
             const EndWidths w = strut_end_widths(p_, width_[t_.struts[e].top], run, angle, distance(a, b),
