@@ -183,9 +183,9 @@ std::vector<OutputFile> output_files(const Result& r, const Job& job, const std:
                          return encode_3mf_cura(r.name, {{r.name + " model", r.model, {}},
                                                          {r.name + " supports", r.supports.mesh, cura_support_mesh_settings()}});
                      }});
-    files.push_back({r.name + ".prusa.3mf", [&r] {
+    files.push_back({r.name + ".prusa.3mf", [&r, &job] {
                          return encode_3mf_prusa(r.name, {{r.name + " model", r.model, {}},
-                                                          {r.name + " supports", r.supports.mesh, prusa_support_volume_settings()}});
+                                                          {r.name + " supports", r.supports.mesh, prusa_support_volume_settings(job.params)}});
                      }});
     files.push_back({r.name + ".report.json", [&r, &job] { return report_json(r, job); }});
     files.push_back({r.name + ".scad", [&r, &job, version] {

@@ -6,30 +6,20 @@
 #include <fmt/format.h>
 #include <iterator>
 #include <numeric>
+#include <stdexcept>
 #include <tuple>
+#include <zip.h>
 
 namespace cs {
 namespace {
 
-std::uint32_t crc32(std::string_view data) {
-    static const auto table = [] {
-        std::array<std::uint32_t, 256> t{};
-        for (std::uint32_t i = 0; i < 256; ++i) {
-            std::uint32_t c = i;
-            for (int k = 0; k < 8; ++k) c = c & 1 ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-            t[i] = c;
-        }
-        return t;
-    }();
-    std::uint32_t c = 0xFFFFFFFFu;
-    for (unsigned char b : data) c = table[(c ^ b) & 0xFF] ^ (c >> 8);
-    return c ^ 0xFFFFFFFFu;
-}
-
-void put16(std::string& s, std::uint16_t v) { s.push_back(char(v & 0xFF)), s.push_back(char(v >> 8)); }
-void put32(std::string& s, std::uint32_t v) {
-    for (int i = 0; i < 4; ++i) s.push_back(char((v >> (8 * i)) & 0xFF));
-}
+// Deflate level of every entry: zlib's fastest. Measured on nefertiti's 7.1 MB of model XML: level 1
+// packs it to 1.85 MB in 0.08 s, the default level 6 to 1.51 MB in 0.22 s. Both are far below the
+// STL (5.0 MB); the generator's speed counts for more than the last 20 % of size.
+constexpr int kDeflateLevel = 1;
+// Every entry's modification time is fixed (2000-01-01 12:00 UTC) so the same input gives the same
+// bytes. ZIP stores it as a local DOS time, so the bytes match within one time zone.
+constexpr time_t kFixedMtime = 946728000;
 
 std::string xml_escape(const std::string& text) {
     std::string out;
@@ -153,45 +143,58 @@ std::string build_item(int object_id, const std::vector<const NamedMesh*>& parts
 // supports volume are set to it (its default small_perimeter_speed, 15 mm/s, would otherwise
 // apply to every strut's closed loop).
 constexpr const char* kPrusaSupportSpeed = "60";
+// The supports volume's perimeter line width over the N-profile wall thickness (see below).
+constexpr double kPrusaStrutLineOverWall = 1.1;
 
 }  // namespace
 
 std::string encode_zip(std::vector<std::pair<std::string, std::string>> entries) {
-    std::string out, central;
-    for (const auto& entry : entries) {
-        const std::string& name = entry.first;  // captured below: clang 14 cannot capture structured bindings
-        const std::string& data = entry.second;
-        std::uint32_t offset = static_cast<std::uint32_t>(out.size()), crc = crc32(data);
-        auto size = static_cast<std::uint32_t>(data.size());
-        auto header = [&](std::string& s, bool central_entry) {
-            put32(s, central_entry ? 0x02014b50u : 0x04034b50u);
-            if (central_entry) put16(s, 20);  // made by
-            put16(s, 20);                     // version needed
-            put16(s, 0);                      // flags
-            put16(s, 0);                      // stored
-            put16(s, 0), put16(s, 0x21);      // time, date: 1980-01-01 (fixed: deterministic output)
-            put32(s, crc), put32(s, size), put32(s, size);
-            put16(s, static_cast<std::uint16_t>(name.size()));
-            put16(s, 0);  // extra
-            if (central_entry) {
-                put16(s, 0), put16(s, 0), put16(s, 0);  // comment, disk, internal attributes
-                put32(s, 0);                            // external attributes
-                put32(s, offset);
-            }
-            s += name;
-        };
-        header(out, false);
-        out += data;
-        header(central, true);
+    // libzip writes the container into a growing memory buffer; the entries' data must outlive
+    // zip_close, which is when libzip deflates them.
+    auto fail = [](const char* what, zip_error_t* err) {
+        std::string msg = fmt::format("3MF packaging failed ({}): {}", what, zip_error_strerror(err));
+        zip_error_fini(err);
+        throw std::runtime_error(msg);
+    };
+    zip_error_t err;
+    zip_error_init(&err);
+    zip_source_t* buffer = zip_source_buffer_create(nullptr, 0, 0, &err);
+    if (!buffer) fail("buffer", &err);
+    zip_t* archive = zip_open_from_source(buffer, ZIP_TRUNCATE, &err);
+    if (!archive) {
+        zip_source_free(buffer);
+        fail("open", &err);
     }
-    auto central_offset = static_cast<std::uint32_t>(out.size());
-    out += central;
-    put32(out, 0x06054b50u);
-    put16(out, 0), put16(out, 0);
-    put16(out, static_cast<std::uint16_t>(entries.size())), put16(out, static_cast<std::uint16_t>(entries.size()));
-    put32(out, static_cast<std::uint32_t>(central.size()));
-    put32(out, central_offset);
-    put16(out, 0);
+    zip_source_keep(buffer);  // still ours after zip_close, so the result can be read back
+    for (const auto& [name, data] : entries) {
+        zip_source_t* src = zip_source_buffer(archive, data.data(), data.size(), 0);
+        zip_int64_t index = src ? zip_file_add(archive, name.c_str(), src, ZIP_FL_ENC_UTF_8) : -1;
+        if (index < 0) {
+            if (src) zip_source_free(src);
+            zip_discard(archive);
+            zip_source_free(buffer);
+            fail(name.c_str(), &err);
+        }
+        zip_set_file_compression(archive, static_cast<zip_uint64_t>(index), ZIP_CM_DEFLATE, kDeflateLevel);
+        zip_file_set_mtime(archive, static_cast<zip_uint64_t>(index), kFixedMtime, 0);
+    }
+    if (zip_close(archive) < 0) {
+        zip_error_set(&err, zip_error_code_zip(zip_get_error(archive)), zip_error_code_system(zip_get_error(archive)));
+        zip_discard(archive);
+        zip_source_free(buffer);
+        fail("write", &err);
+    }
+    std::string out;
+    zip_stat_t st;
+    if (zip_source_stat(buffer, &st) == 0 && zip_source_open(buffer) == 0) {
+        out.resize(static_cast<size_t>(st.size));
+        zip_int64_t got = zip_source_read(buffer, out.data(), st.size);
+        zip_source_close(buffer);
+        if (got != static_cast<zip_int64_t>(st.size)) out.clear();
+    }
+    zip_source_free(buffer);
+    zip_error_fini(&err);
+    if (out.empty()) throw std::runtime_error("3MF packaging failed: the archive could not be read back from memory");
     return out;
 }
 
@@ -200,15 +203,23 @@ const Settings& cura_support_mesh_settings() {
     return settings;
 }
 
-const Settings& prusa_support_volume_settings() {
-    static const Settings settings = {{"perimeters", "1"},
-                                      {"fill_density", "0%"},
-                                      {"top_solid_layers", "0"},
-                                      {"bottom_solid_layers", "0"},
-                                      {"perimeter_speed", kPrusaSupportSpeed},
-                                      {"external_perimeter_speed", kPrusaSupportSpeed},
-                                      {"small_perimeter_speed", kPrusaSupportSpeed}};
-    return settings;
+Settings prusa_support_volume_settings(const Params& p) {
+    // One bead a little wider than the N-profile's wall: Arachne then prints each wall as a single
+    // line that fills it, and a d_min strut as one loop with no hole. Measured on nefertiti, spot and
+    // stanford_bunny at benchmark scale: support filament / mesh volume 0.73-0.84 -> 0.77-0.88 at the
+    // same print time (within 1.5 %); 0.6 mm changed nothing more.
+    const std::string line_width = fmt::format("{:.2f}", kPrusaStrutLineOverWall * p.wall_thickness);
+    return {{"perimeters", "1"},
+            {"fill_density", "0%"},
+            {"top_solid_layers", "0"},
+            // The first layer solid: a foot meets the bed with its whole area, not with a ring.
+            // Solid to the foot's top cost 2.5 % more support time on spot for no more grip.
+            {"bottom_solid_layers", "1"},
+            {"perimeter_speed", kPrusaSupportSpeed},
+            {"external_perimeter_speed", kPrusaSupportSpeed},
+            {"small_perimeter_speed", kPrusaSupportSpeed},
+            {"perimeter_extrusion_width", line_width},
+            {"external_perimeter_extrusion_width", line_width}};
 }
 
 const Settings& cura_support_line_settings() {

@@ -1,7 +1,7 @@
 // 3MF (3D Manufacturing Format) output: the model and its supports in the forms the two slicers we
 // target read as "print these struts as support" (see shared notes slicer-handoff.md). A 3MF file
-// is a ZIP package of XML parts; ours is written uncompressed ("stored"), which every ZIP reader
-// accepts.
+// is a ZIP package of XML parts; ours is packed by libzip with deflate (a scan's 3MF is about a
+// third of its STL).
 //
 // One file cannot serve both slicers: Cura reads one mesh object as one model (its per-object
 // settings cannot address part of it), and PrusaSlicer drops separate objects onto the bed one by
@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "core/params.hpp"
 
 namespace cs {
 
@@ -32,9 +33,10 @@ struct NamedMesh {
 // "cura:<key>"; it keeps only keys the object's setting stack knows.
 const Settings& cura_support_mesh_settings();
 
-// PrusaSlicer 2.5 per-volume settings that make struts print like its supports: one perimeter, no
-// infill, no solid layers, perimeters at the support speed.
-const Settings& prusa_support_volume_settings();
+// PrusaSlicer 2.5 per-volume settings that make struts print like its supports: one perimeter a
+// little wider than the N-profile wall, no infill, a solid first layer (the feet), perimeters at
+// the support speed. `p` gives the wall thickness.
+Settings prusa_support_volume_settings(const Params& p);
 
 // Cura's global / per-extruder support settings under which a support mesh prints like its tree
 // supports (they cannot be set per object): one wall, no infill, no joining of neighbouring struts
@@ -56,8 +58,8 @@ std::string encode_3mf_cura(const std::string& name, const std::vector<NamedMesh
 // with each part's settings.
 std::string encode_3mf_prusa(const std::string& name, const std::vector<NamedMesh>& parts);
 
-// A ZIP archive of the given (name, content) entries, stored without compression.
-// Entries are taken by value: move large ones in.
+// A ZIP archive of the given (name, content) entries, each deflated, written by libzip.
+// Entries are taken by value: move large ones in. Throws std::runtime_error if libzip fails.
 std::string encode_zip(std::vector<std::pair<std::string, std::string>> entries);
 
 }  // namespace cs

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <unordered_map>
 
 #include "core/rules.hpp"
 #include "core/xy_grid.hpp"
@@ -152,18 +151,20 @@ bool hanging_keel(const Mesh& m, std::uint32_t f0, std::uint32_t f1, std::uint32
 // from the overhang) become anchors: the wall carries the overhang there.
 std::vector<EdgeSegment> support_edges(const Mesh& m, const std::vector<char>& cls, const OverhangOptions& o,
                                        OverhangSamples& res) {
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> edge_faces;
-    edge_faces.reserve(m.faces.size() * 2);
+    // Every (edge, face) pair, sorted by edge then face: each edge's faces in a run, edges in a
+    // deterministic order. (A flat sort: a hash map of small vectors cost a scan seconds in malloc.)
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> edge_face;
+    edge_face.reserve(m.faces.size() * 3);
     for (std::uint32_t fi = 0; fi < m.faces.size(); ++fi)
-        for (int k = 0; k < 3; ++k) edge_faces[edge_key(m.faces[fi][k], m.faces[fi][(k + 1) % 3])].push_back(fi);
-    std::vector<std::uint64_t> keys;
-    keys.reserve(edge_faces.size());
-    for (const auto& kv : edge_faces) keys.push_back(kv.first);
-    std::sort(keys.begin(), keys.end());  // deterministic order
+        for (int k = 0; k < 3; ++k) edge_face.emplace_back(edge_key(m.faces[fi][k], m.faces[fi][(k + 1) % 3]), fi);
+    std::sort(edge_face.begin(), edge_face.end());
     const double sin_c = std::sin(deg_to_rad(o.critical_angle));
     std::vector<EdgeSegment> out;
-    for (auto key : keys) {
-        const auto& fs = edge_faces[key];
+    std::vector<std::uint32_t> fs;
+    for (size_t run = 0, next = 0; run < edge_face.size(); run = next) {
+        const std::uint64_t key = edge_face[run].first;
+        fs.clear();
+        for (next = run; next < edge_face.size() && edge_face[next].first == key; ++next) fs.push_back(edge_face[next].second);
         auto a = static_cast<std::uint32_t>(key >> 32), b = static_cast<std::uint32_t>(key & 0xffffffffu);
         const Vec3 &pa = m.vertices[a], &pb = m.vertices[b];
         if (std::max(pa.z, pb.z) <= o.bed_height * 0.5) continue;

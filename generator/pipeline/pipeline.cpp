@@ -282,11 +282,12 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         r.samples.samples = edited_samples(*query, std::move(r.samples.samples), job.edits, p);
         r.blocked_samples = before + job.edits.support_points.size() - r.samples.samples.size();
     }
-    SupportTree grown = sw.time("tree", progress, [&] { return grow_tree(*query, r.samples.samples, p); });
     // Where tips and pillars stand aside from their samples, the overhang between them may be left
-    // beyond reach: a sample there, and the tree grown again (once; new tips cover their own points).
+    // beyond reach: samples there. Judged on the hung leaves (where every tip stands is known before
+    // the tree grows); new tips cover their own points, so once is enough.
     auto extra = sw.time("coverage top-up", progress, [&] {
-        auto more = top_up_samples(r.model, oo, query.get(), coverers(grown, r.samples.samples));
+        SupportTree hung = hang_leaves(*query, r.samples.samples, p);
+        auto more = top_up_samples(r.model, oo, query.get(), coverers(hung, r.samples.samples));
         std::erase_if(more, [&](const Sample& s) { return in_blocker(s.p, job.edits.blockers, p); });
         return more;
     });
@@ -294,8 +295,8 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         r.samples.topped_up = extra.size();
         r.samples.samples.insert(r.samples.samples.end(), extra.begin(), extra.end());
         sort_top_down(r.samples.samples);
-        grown = sw.time("tree again", progress, [&] { return grow_tree(*query, r.samples.samples, p); });
     }
+    SupportTree grown = sw.time("tree", progress, [&] { return grow_tree(*query, r.samples.samples, p); });
     // The user's omitted struts are numbered in the final tree (the one the .scad shows).
     r.supports = sw.time("struts", progress, [&] { return finish_supports(std::move(grown), p, job.edits.omit_struts); });
     Params columns = p;

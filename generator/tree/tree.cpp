@@ -24,6 +24,12 @@ public:
         : model_(model), p_(p), fan_(p.critical_angle), cx_{model, p, fan_, tree()},
           active_nodes_(std::max(2.0 * p.sampling_distance, 1.0)) {}
 
+    SupportTree hang_only(const std::vector<Sample>& samples) {
+        hang_leaves(samples);
+        count_from_tree();
+        return std::move(t_);
+    }
+
     SupportTree run(const std::vector<Sample>& samples) {
         hang_leaves(samples);
         while (!heap_.empty()) {
@@ -451,6 +457,10 @@ double SupportTree::total_length() const {
 
 SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p) {
     return Sweep(model, p).run(samples);
+}
+
+SupportTree hang_leaves(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p) {
+    return Sweep(model, p).hang_only(samples);
 }
 
 }  // namespace cs

@@ -97,4 +97,10 @@ SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>&
 // tree/clearance.hpp whether it fits, tree/tuning.hpp holds the search's constants.
 SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p);
 
+// The tree before it grows: each sample's leaf (its tip placed), pillar, or the reason it has
+// neither (touching, bridged, dropped), exactly as grow_tree starts from them; no struts. What
+// holds the overhang up is known from this alone, so the coverage top-up judges it without
+// growing a tree it would grow again.
+SupportTree hang_leaves(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p);
+
 }  // namespace cs

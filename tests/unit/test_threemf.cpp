@@ -8,6 +8,7 @@
 #include <fstream>
 #include <map>
 #include <regex>
+#include <zip.h>
 
 #include "mesh/mesh_io.hpp"
 #include "output/threemf.hpp"
@@ -16,30 +17,46 @@
 namespace cs::test {
 namespace {
 
-std::uint32_t get32(const std::string& s, size_t at) {
-    std::uint32_t v = 0;
-    for (int i = 3; i >= 0; --i) v = (v << 8) | std::uint8_t(s[at + i]);
-    return v;
+struct ZipEntry {
+    std::string data;
+    zip_uint16_t method = 0;       // ZIP_CM_STORE, ZIP_CM_DEFLATE, ...
+    zip_uint64_t packed_size = 0;  // bytes in the archive
+};
+
+// Reads a ZIP archive held in memory back with libzip (the same library that writes it, but its
+// reading side: every entry is inflated and checked against its CRC).
+std::map<std::string, ZipEntry> unzip_entries(const std::string& z) {
+    std::map<std::string, ZipEntry> out;
+    zip_error_t err;
+    zip_error_init(&err);
+    zip_source_t* src = zip_source_buffer_create(z.data(), z.size(), 0, &err);
+    zip_t* archive = src ? zip_open_from_source(src, ZIP_RDONLY | ZIP_CHECKCONS, &err) : nullptr;
+    EXPECT_NE(archive, nullptr) << zip_error_strerror(&err);
+    if (!archive) {
+        if (src) zip_source_free(src);
+        zip_error_fini(&err);
+        return out;
+    }
+    for (zip_int64_t i = 0; i < zip_get_num_entries(archive, 0); ++i) {
+        zip_stat_t st;
+        EXPECT_EQ(zip_stat_index(archive, static_cast<zip_uint64_t>(i), 0, &st), 0);
+        ZipEntry e{std::string(st.size, '\0'), st.comp_method, st.comp_size};
+        zip_file_t* f = zip_fopen_index(archive, static_cast<zip_uint64_t>(i), 0);
+        EXPECT_NE(f, nullptr);
+        if (f) {
+            EXPECT_EQ(zip_fread(f, e.data.data(), st.size), static_cast<zip_int64_t>(st.size)) << st.name;
+            zip_fclose(f);
+        }
+        out[st.name] = std::move(e);
+    }
+    zip_discard(archive);  // also frees the source
+    zip_error_fini(&err);
+    return out;
 }
 
-// Reads back a stored ZIP (what encode_zip writes) by its central directory.
 std::map<std::string, std::string> unzip(const std::string& z) {
     std::map<std::string, std::string> out;
-    size_t eocd = z.rfind(std::string("PK\x05\x06", 4));
-    EXPECT_NE(eocd, std::string::npos);
-    size_t n = std::uint8_t(z[eocd + 10]) | (std::uint8_t(z[eocd + 11]) << 8);
-    size_t at = get32(z, eocd + 16);
-    for (size_t i = 0; i < n; ++i) {
-        EXPECT_EQ(get32(z, at), 0x02014b50u);
-        std::uint32_t size = get32(z, at + 20);
-        size_t name_len = std::uint8_t(z[at + 28]) | (std::uint8_t(z[at + 29]) << 8);
-        std::string name = z.substr(at + 46, name_len);
-        size_t local = get32(z, at + 42);
-        EXPECT_EQ(get32(z, local), 0x04034b50u);
-        size_t local_name = std::uint8_t(z[local + 26]) | (std::uint8_t(z[local + 27]) << 8);
-        out[name] = z.substr(local + 30 + local_name, size);
-        at += 46 + name_len;
-    }
+    for (auto& [name, e] : unzip_entries(z)) out[name] = std::move(e.data);
     return out;
 }
 
@@ -129,7 +146,7 @@ TEST(ThreeMF, CuraGetsAGroupWhoseSupportsObjectIsMarkedPrintAsSupport) {
 TEST(ThreeMF, PrusaGetsOneObjectWithTwoVolumesInContiguousBlocks) {
     TwoParts p;
     auto files = unzip(encode_3mf_prusa("part", {{"part model", p.model, {}},
-                                                 {"part supports", p.supports, prusa_support_volume_settings()}}));
+                                                 {"part supports", p.supports, prusa_support_volume_settings(Params{})}}));
     ASSERT_TRUE(files.count("3D/3dmodel.model") && files.count("Metadata/Slic3r_PE_model.config"));
     const std::string& xml = files["3D/3dmodel.model"];
     EXPECT_NE(xml.find("<metadata name=\"slic3rpe:Version3mf\">1</metadata>"), std::string::npos);
@@ -161,11 +178,32 @@ TEST(ThreeMF, PrusaGetsOneObjectWithTwoVolumesInContiguousBlocks) {
     }
     // Settings on the supports volume only.
     EXPECT_EQ(count(volumes[0], "type=\"volume\""), 2);  // name and volume_type
-    for (const auto& [key, value] : prusa_support_volume_settings())
+    for (const auto& [key, value] : prusa_support_volume_settings(Params{}))
         EXPECT_EQ(count(volumes[1], "<metadata type=\"volume\" key=\"" + key + "\" value=\"" + value + "\"/>"), 1) << key;
     for (const char* key : {"perimeters\" value=\"1", "fill_density\" value=\"0%", "top_solid_layers\" value=\"0",
-                            "bottom_solid_layers\" value=\"0"})
+                            "bottom_solid_layers\" value=\"1", "perimeter_extrusion_width\" value=\"0.55",
+                            "external_perimeter_extrusion_width\" value=\"0.55"})
         EXPECT_EQ(count(volumes[1], std::string("key=\"") + key + "\""), 1) << key;
+}
+
+// #11: the package is deflated by a maintained library; the same input gives the same bytes.
+TEST(ThreeMF, EntriesAreDeflatedAndTheSameInputGivesTheSameBytes) {
+    Mesh model = box({0, 0, 0}, {10, 10, 10});
+    for (int i = 1; i < 40; ++i) append(model, box({0, 0, 10.0 * i}, {10, 10, 10.0 * i + 10}));
+    TwoParts p;
+    std::vector<NamedMesh> parts = {{"tower", model, {}}, {"tower supports", p.supports, prusa_support_volume_settings(Params{})}};
+    std::string z = encode_3mf_prusa("tower", parts);
+    auto entries = unzip_entries(z);
+    ASSERT_EQ(entries.size(), 4u);
+    std::size_t unpacked = 0;
+    for (const auto& [name, e] : entries) {
+        EXPECT_EQ(e.method, ZIP_CM_DEFLATE) << name;
+        unpacked += e.data.size();
+    }
+    const ZipEntry& xml = entries.at("3D/3dmodel.model");
+    EXPECT_LT(xml.packed_size * 3, xml.data.size());  // indexed-mesh XML packs well below a third
+    EXPECT_LT(z.size(), unpacked);
+    EXPECT_EQ(encode_3mf_prusa("tower", parts), z);
 }
 
 TEST(ThreeMF, CuraProfileHoldsTheSupportLineSettingsInCurasFormat) {
@@ -188,7 +226,7 @@ TEST(ThreeMF, NamesAreEscapedAndEmptySupportsAreLeftOut) {
     EXPECT_NE(xml.find("a&amp;b &quot;c&quot;"), std::string::npos);
     EXPECT_EQ(elements(xml, "object").size(), 2u);  // the model and its group
     EXPECT_EQ(count(xml, "cura:support_mesh"), 0);
-    auto prusa = unzip(encode_3mf_prusa("x", {{"x", model, {}}, {"x supports", none, prusa_support_volume_settings()}}));
+    auto prusa = unzip(encode_3mf_prusa("x", {{"x", model, {}}, {"x supports", none, prusa_support_volume_settings(Params{})}}));
     EXPECT_EQ(elements(prusa["Metadata/Slic3r_PE_model.config"], "volume").size(), 1u);
 }
 
