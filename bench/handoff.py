@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Every route from our supports to a slicer, against the slicers' own supports, in one run and one profile.
 
-usage: bench/handoff.py [--bin build/clever-support] [--models a,b,...] [--jobs 2] [--work DIR]
+usage: bench/handoff.py [--bin build/generator/clever-support] [--models a,b,...] [--jobs 2] [--work DIR]
                         [--out bench/results] [--report-only]
 
 Per model (shared models at their benchmark.json scale, orientation kept):
@@ -12,12 +12,14 @@ Per model (shared models at their benchmark.json scale, orientation kept):
   Prusa      none, grid, snug (model.stl); ours from our 3MF (<name>.prusa.3mf, per-volume settings);
              ours as model geometry (supported.stl)
 Each G-code is parsed by slicers/gcode_stats.py (retractions, travel, islands per layer) and deleted.
-Writes <out>/handoff.json (raw + derived) and <out>/handoff.md (tables). See bench/README.md.
+Writes <out>/handoff.json (raw + derived), <out>/handoff.md (tables) and <out>/handoff.svg (chart).
+See bench/README.md.
 """
 import argparse
 import concurrent.futures as cf
 import datetime
 import json
+import math
 import os
 import shutil
 import statistics
@@ -40,6 +42,7 @@ DEFAULT_MODELS = ["u_overhang", "extruder_idler", "rocker_arm", "armadillo", "be
 TARGET_TIME = 0.8      # support time ours / the better baseline
 TARGET_FILAMENT = 0.6  # support filament ours / the better baseline
 TARGET_SLICED = 0.9    # sliced support volume / mesh support volume
+TARGET_SPEEDUP = 5.0   # Cura tree's CPU overhead (tree - no supports) / our generator's CPU
 
 # key -> (slicer, support mode, what is sliced)
 ROUTES = {
@@ -95,7 +98,10 @@ def generate(args, name, path, scale, work, strategy):
     if p is None or p.returncode != 0:
         return {"cmd": " ".join(cmd), "error": (p.stderr[-800:] if p else "timeout")}
     rep = json.loads(p.stdout)
-    return {"cmd": " ".join(cmd), "dir": out, "cpu_s": cpu,
+    files = {suffix: os.path.getsize(os.path.join(out, name + suffix))
+             for suffix in (".3mf", ".prusa.3mf", ".supported.stl", ".model.stl")
+             if os.path.exists(os.path.join(out, name + suffix))}
+    return {"cmd": " ".join(cmd), "dir": out, "cpu_s": cpu, "file_bytes": files,
             "support_volume_mm3": rep["supports"]["support_volume_mm3"],
             "struts": rep["supports"]["struts"], "samples": rep["overhangs"]["samples"],
             "triangles": rep["input"]["triangles"]}
@@ -209,6 +215,10 @@ def derive(m):
         t["prusa_3mf_time_vs_snug"] = ratio(d["prusa_ours_3mf"]["support_min"], d["prusa_snug"]["support_min"])
         t["prusa_3mf_filament_vs_snug"] = ratio(d["prusa_ours_3mf"]["support_mm3"], d["prusa_snug"]["support_mm3"])
         t["prusa_3mf_sliced_over_mesh"] = d["prusa_ours_3mf"].get("sliced_over_mesh")
+    gen_cpu = m["gen"]["tree"].get("cpu_s")
+    tree_cpu, none_cpu = s.get("cura_tree", {}).get("cpu_s"), s.get("cura_none", {}).get("cpu_s")
+    if gen_cpu and tree_cpu is not None and none_cpu is not None:
+        t["generation_speedup_vs_cura_tree"] = ratio(tree_cpu - none_cpu, gen_cpu)
     if "prusa_ours_3mf" in d and "prusa_ours_model" in d:
         t["prusa_3mf_time_vs_ours_as_model"] = ratio(d["prusa_ours_3mf"]["support_min"],
                                                      d["prusa_ours_model"]["support_min"])
@@ -222,6 +232,7 @@ TARGETS = [  # (ratio key, limit, direction) — met when value <= limit ("max")
     ("prusa_3mf_time_vs_snug", TARGET_TIME, "max"),
     ("prusa_3mf_filament_vs_snug", TARGET_FILAMENT, "max"),
     ("prusa_3mf_sliced_over_mesh", TARGET_SLICED, "min"),
+    ("generation_speedup_vs_cura_tree", TARGET_SPEEDUP, "min"),
 ]
 
 
@@ -275,10 +286,88 @@ def report_md(data):
     L.append("| **target** | | " + " | ".join(("≤ " if d == "max" else "≥ ") + f"{v}" for _, v, d in TARGETS) + " |")
     L.append("| **met on** | | " + " | ".join(f"{s['met'].get(k, 0)}/{s['n'].get(k, 0)}" for k, _, _ in TARGETS)
              + " |")
+    L.append("\n## Generation and files\n")
+    L.append("*Speed-up*: Cura tree's CPU overhead (CuraEngine with tree support − without supports, same run) over "
+             "our generator's CPU (`clever-support`, every output written). Files: what the generator wrote.\n")
+    L.append("| model | triangles | our CPU s | Cura tree overhead CPU s | speed-up | .prusa.3mf MB | .3mf MB | "
+             ".supported.stl MB |")
+    L.append("|---|---:|---:|---:|---:|---:|---:|---:|")
+    for name, m in data["models"].items():
+        g, sl = m["gen"].get("tree", {}), m.get("slices", {})
+        over = (sl["cura_tree"]["cpu_s"] - sl["cura_none"]["cpu_s"]
+                if "cpu_s" in sl.get("cura_tree", {}) and "cpu_s" in sl.get("cura_none", {}) else None)
+        fb = g.get("file_bytes", {})
+        mb = lambda k: fmt(fb[k] / 1e6, "{:.2f}") if k in fb else "–"  # noqa: E731
+        L.append(f"| {name} | {g.get('triangles', '–')} | {fmt(g.get('cpu_s'))} | {fmt(over, '{:.1f}')} | "
+                 f"{fmt(m.get('targets', {}).get('generation_speedup_vs_cura_tree'), '{:.1f}×')} | "
+                 f"{mb('.prusa.3mf')} | {mb('.3mf')} | {mb('.supported.stl')} |")
     extra = ["cura_mesh_time_vs_ours_as_model", "prusa_3mf_time_vs_ours_as_model", "cura_mesh_filament_vs_columns_mesh"]
     L.append("\nOther ratios (median, worst): " + "; ".join(
         f"{k} {fmt(s['median'].get(k))}, {fmt(s['worst'].get(k))}" for k in extra) + ".\n")
     return "\n".join(L) + "\n"
+
+
+CHART_ROUTES = [  # (route, label, colour); ours hatched
+    ("cura_normal", "Cura normal", "#9ecae1"), ("cura_tree", "Cura tree", "#3182bd"),
+    ("cura_ours_mesh", "ours, Cura support mesh", "#e6550d"),
+    ("prusa_snug", "Prusa snug", "#a1d99b"), ("prusa_ours_3mf", "ours, Prusa 3MF", "#a63603"),
+]
+
+
+def write_chart_svg(data, path):
+    """Support minutes and support grams per model and route, as a plain SVG (no plotting library)."""
+    models = [n for n, m in data["models"].items() if m.get("derived")]
+    if not models:
+        return
+    panels = [("support_min", "support print time (min): route − bare model, same slicer"),
+              ("support_g", "support filament (g): route − bare model, same slicer")]
+    bar, gap, left, top, height, between = 9, 14, 60, 50, 220, 70
+    group = bar * len(CHART_ROUTES) + gap
+    width = max(left + group * len(models) + 20, left + 170 * len(CHART_ROUTES) + 20)  # room for the legend
+    total_h = top + len(panels) * (height + between) + 20
+    out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{total_h}" '
+           f'font-family="sans-serif" font-size="11">',
+           '<defs><pattern id="ours" width="4" height="4" patternUnits="userSpaceOnUse" '
+           'patternTransform="rotate(45)"><rect width="2" height="4" fill="white" fill-opacity="0.5"/></pattern></defs>',
+           f'<rect width="{width}" height="{total_h}" fill="white"/>',
+           f'<text x="{left}" y="18" font-size="13">Hand-off routes against the slicers\' own supports '
+           f'({data["stamp"]["date"]}, commit {data["stamp"]["commit"][:7]}); hatched = ours</text>']
+    for i, (_, label, colour) in enumerate(CHART_ROUTES):  # legend
+        x = left + i * 170
+        out.append(f'<rect x="{x}" y="28" width="10" height="10" fill="{colour}"/>')
+        out.append(f'<text x="{x + 14}" y="37">{label}</text>')
+    for p_i, (field, title) in enumerate(panels):
+        y0 = top + p_i * (height + between) + 20
+        vals = [m.get("derived", {}).get(k, {}).get(field) for n in models for k, _, _ in CHART_ROUTES
+                for m in [data["models"][n]]]
+        vmax = max([v for v in vals if v is not None] + [1e-9])
+        step = 10 ** math.floor(math.log10(vmax))  # then 4 to 10 grid lines
+        step /= 5 if vmax / step < 2 else 2 if vmax / step < 5 else 1
+        out.append(f'<text x="{left}" y="{y0 - 8}" font-size="12">{title}</text>')
+        tick = 0.0
+        while tick <= vmax * 1.0001:
+            y = y0 + height - height * tick / vmax
+            out.append(f'<line x1="{left}" x2="{width - 20}" y1="{y:.1f}" y2="{y:.1f}" stroke="#ddd"/>')
+            out.append(f'<text x="{left - 5}" y="{y + 4:.1f}" text-anchor="end">{tick:g}</text>')
+            tick += step
+        for j, n in enumerate(models):
+            d = data["models"][n].get("derived", {})
+            for k_i, (key, _, colour) in enumerate(CHART_ROUTES):
+                v = d.get(key, {}).get(field)
+                if v is None or v <= 0:
+                    continue
+                x, h = left + j * group + k_i * bar, height * v / vmax
+                out.append(f'<rect x="{x}" y="{y0 + height - h:.1f}" width="{bar - 1}" height="{h:.1f}" '
+                           f'fill="{colour}"/>')
+                if key.endswith(("_mesh", "_3mf")):
+                    out.append(f'<rect x="{x}" y="{y0 + height - h:.1f}" width="{bar - 1}" height="{h:.1f}" '
+                               f'fill="url(#ours)"/>')
+            out.append(f'<text x="{left + j * group + group / 2 - gap / 2:.1f}" y="{y0 + height + 14}" '
+                       f'text-anchor="middle">{n.replace("stanford_", "").replace("extruder_", "")}</text>')
+        out.append(f'<line x1="{left}" x2="{width - 20}" y1="{y0 + height}" y2="{y0 + height}" stroke="black"/>')
+    out.append("</svg>")
+    with open(path, "w") as f:
+        f.write("\n".join(out) + "\n")
 
 
 def summarize(data):
@@ -301,7 +390,7 @@ def summarize(data):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--bin", default=os.path.join(ROOT, "build", "clever-support"))
+    ap.add_argument("--bin", default=os.path.join(ROOT, "build", "generator", "clever-support"))
     ap.add_argument("--models", default=",".join(DEFAULT_MODELS))
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "bench-handoff"))
@@ -313,8 +402,12 @@ def main():
     jpath, mpath = os.path.join(args.out, "handoff.json"), os.path.join(args.out, "handoff.md")
     if args.report_only:
         data = json.load(open(jpath))
+        for m in data["models"].values():
+            if "slices" in m:
+                m["derived"], m["targets"] = derive(m)
         summarize(data)
         open(mpath, "w").write(report_md(data))
+        write_chart_svg(data, os.path.join(args.out, "handoff.svg"))
         return 0
     bench = {os.path.splitext(m["file"])[0]: (os.path.join(SHARED, m["file"]), float(m["scale"]))
              for m in json.load(open(os.path.join(SHARED, "benchmark.json")))["models"]}
@@ -353,6 +446,7 @@ def main():
         os.makedirs(args.out, exist_ok=True)
         json.dump(data, open(jpath, "w"), indent=1)
         open(mpath, "w").write(report_md(data))
+        write_chart_svg(data, os.path.join(args.out, "handoff.svg"))
     log(f"done, CPU {cpu_total:.0f} s")
     return 0
 
