@@ -55,8 +55,16 @@ std::string sha256_hex(std::string_view data) {
 }
 
 std::string file_sha256(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    const std::streamoff size = in ? static_cast<std::streamoff>(in.tellg()) : -1;
+    if (size < 0) {  // not a regular file (a pipe): read it as a stream
+        std::ifstream stream(path, std::ios::binary);
+        return sha256_hex(std::string((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>()));
+    }
+    std::string bytes(static_cast<size_t>(size), '\0');
+    in.seekg(0);
+    in.read(bytes.data(), size);  // one read, not a character at a time
+    bytes.resize(static_cast<size_t>(in.gcount()));
     return sha256_hex(bytes);
 }
 

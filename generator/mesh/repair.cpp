@@ -118,20 +118,17 @@ void keep_proper_triangles(const Mesh& raw, const std::vector<std::uint32_t>& re
         }
         kept.push_back(f);
     }
-    auto corners = [&](std::uint32_t i) {
-        Triangle t = kept[i];
-        std::sort(t.begin(), t.end());
-        return t;
-    };
-    std::vector<std::uint32_t> by_corners(kept.size());
-    std::iota(by_corners.begin(), by_corners.end(), 0u);
-    std::sort(by_corners.begin(), by_corners.end(), [&](std::uint32_t a, std::uint32_t b) {
-        auto ta = corners(a), tb = corners(b);
-        return ta != tb ? ta < tb : a < b;
-    });
+    // Each triangle's corners in ascending order, with its index: sorted, equal corners are
+    // neighbours and the first of them (the lowest index) is the one kept.
+    std::vector<std::pair<Triangle, std::uint32_t>> by_corners(kept.size());
+    for (std::uint32_t i = 0; i < kept.size(); ++i) {
+        by_corners[i] = {kept[i], i};
+        std::sort(by_corners[i].first.begin(), by_corners[i].first.end());
+    }
+    std::sort(by_corners.begin(), by_corners.end());
     std::vector<char> duplicate(kept.size(), 0);
     for (size_t i = 1; i < by_corners.size(); ++i)
-        if (corners(by_corners[i]) == corners(by_corners[i - 1])) duplicate[by_corners[i]] = 1;
+        if (by_corners[i].first == by_corners[i - 1].first) duplicate[by_corners[i].second] = 1;
     m.faces.reserve(kept.size());
     for (size_t i = 0; i < kept.size(); ++i) {
         if (duplicate[i]) ++r.duplicates_removed;

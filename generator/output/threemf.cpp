@@ -70,20 +70,26 @@ IndexedMesh index_mesh(const Mesh& m) {
     return out;
 }
 
+// Formatted into a memory buffer and appended in one go: a back_inserter into the string grows
+// it a character at a time, and a scan has hundreds of thousands of these lines.
 void append_vertices(std::string& s, const Mesh& m, const IndexedMesh& im) {
-    s.reserve(s.size() + 60 * im.vertices.size());
+    fmt::memory_buffer buf;
+    buf.reserve(60 * im.vertices.size());
     for (std::uint32_t c : im.vertices) {
         const auto& p = m.vertices[c];
-        fmt::format_to(std::back_inserter(s), "<vertex x=\"{:.6f}\" y=\"{:.6f}\" z=\"{:.6f}\"/>\n", p.x, p.y, p.z);
+        fmt::format_to(std::back_inserter(buf), "<vertex x=\"{:.6f}\" y=\"{:.6f}\" z=\"{:.6f}\"/>\n", p.x, p.y, p.z);
     }
+    s.append(buf.data(), buf.size());
 }
 
 // `offset`: the number of vertices written before this part in the same object.
 void append_triangles(std::string& s, const IndexedMesh& im, std::uint32_t offset) {
-    s.reserve(s.size() + 45 * im.triangles.size());
+    fmt::memory_buffer buf;
+    buf.reserve(45 * im.triangles.size());
     for (const auto& t : im.triangles)
-        fmt::format_to(std::back_inserter(s), "<triangle v1=\"{}\" v2=\"{}\" v3=\"{}\"/>\n", t[0] + offset,
+        fmt::format_to(std::back_inserter(buf), "<triangle v1=\"{}\" v2=\"{}\" v3=\"{}\"/>\n", t[0] + offset,
                        t[1] + offset, t[2] + offset);
+    s.append(buf.data(), buf.size());
 }
 
 constexpr const char* kCoreNamespace = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02";
