@@ -1,6 +1,9 @@
 // clever-support command line: generate (default), regrow, check, render, presets; one function
 // per subcommand, and exit_code_for(), the one place errors become messages and exit codes.
 #include <unistd.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -425,9 +428,22 @@ int run_command(const CommandLine& cl) {
     return cmd_generate(cl.generate, cl.run);
 }
 
+// One run builds and drops many buffers of megabytes (the mesh, its index, the 3MF XML and its
+// deflated package, the STLs). glibc maps each one above 128 KB fresh from the kernel and unmaps it
+// on free, so every run pays the page faults again, and it hands the top of the heap back as soon
+// as 128 KB are free there. Keeping buffers up to 32 MB on the heap and freed memory up to 512 MB:
+// igea (270k triangles) 2.5 -> 2.0 CPU-s, peak memory +9 %. A process setting, hence here in main.
+void tune_allocator() {
+#if defined(__GLIBC__)
+    mallopt(M_MMAP_THRESHOLD, 32 << 20);
+    mallopt(M_TRIM_THRESHOLD, 512 << 20);
+#endif
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+    tune_allocator();
     CLI::App app{"clever-support: tree supports for FDM prints, as printable STL and parametric OpenSCAD.\n"
                  "Examples:\n"
                  "  clever-support model.stl                       # supports into out/model/\n"
