@@ -321,9 +321,11 @@ def write_chart_svg(data, path):
         return
     panels = [("support_min", "support print time (min): route − bare model, same slicer"),
               ("support_g", "support filament (g): route − bare model, same slicer")]
-    bar, gap, left, top, height, between = 9, 14, 60, 50, 220, 70
-    group = bar * len(CHART_ROUTES) + gap
-    width = max(left + group * len(models) + 20, left + 170 * len(CHART_ROUTES) + 20)  # room for the legend
+    gap, left, top, height, between = 14, 60, 50, 220, 70
+    # Bars at least 9 px wide; wider where the legend's width leaves room.
+    group = max(9 * len(CHART_ROUTES) + gap, 170 * len(CHART_ROUTES) / len(models))
+    bar = (group - gap) / len(CHART_ROUTES)
+    width = left + group * len(models) + 20
     total_h = top + len(panels) * (height + between) + 20
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{total_h}" '
            f'font-family="sans-serif" font-size="11">',
@@ -357,11 +359,11 @@ def write_chart_svg(data, path):
                 if v is None or v <= 0:
                     continue
                 x, h = left + j * group + k_i * bar, height * v / vmax
-                out.append(f'<rect x="{x}" y="{y0 + height - h:.1f}" width="{bar - 1}" height="{h:.1f}" '
+                out.append(f'<rect x="{x:.1f}" y="{y0 + height - h:.1f}" width="{bar - 1:.1f}" height="{h:.1f}" '
                            f'fill="{colour}"/>')
                 if key.endswith(("_mesh", "_3mf")):
-                    out.append(f'<rect x="{x}" y="{y0 + height - h:.1f}" width="{bar - 1}" height="{h:.1f}" '
-                               f'fill="url(#ours)"/>')
+                    out.append(f'<rect x="{x:.1f}" y="{y0 + height - h:.1f}" width="{bar - 1:.1f}" '
+                               f'height="{h:.1f}" fill="url(#ours)"/>')
             out.append(f'<text x="{left + j * group + group / 2 - gap / 2:.1f}" y="{y0 + height + 14}" '
                        f'text-anchor="middle">{n.replace("stanford_", "").replace("extruder_", "")}</text>')
         out.append(f'<line x1="{left}" x2="{width - 20}" y1="{y0 + height}" y2="{y0 + height}" stroke="black"/>')
