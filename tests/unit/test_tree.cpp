@@ -1,6 +1,8 @@
 // tree/: cone merging (algorithm.md section 3) and the grown support tree's invariants.
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <cmath>
 #include <map>
 #include <set>
@@ -358,6 +360,43 @@ TEST(GrowTree, ADeadEndLosesOnlyTheLeavesThatCannotGetDownAlone) {
     const auto& st = g->tree.stats;
     EXPECT_EQ(count_kind(g->tree, NodeKind::Leaf), g->samples.samples.size() - st.touching - st.internal - st.bridged - g->tree.pillars.size())
         << st.touching << " " << st.internal << " " << st.bridged << " " << g->tree.pillars.size();
+}
+
+// The coverage top-up judges where tips stand from hang_leaves, before the tree grows: that is
+// only sound if the grown tree's leaves and pillars are exactly the hung ones.
+TEST(HangLeaves, AreTheLeavesAndPillarsTheTreeGrowsFrom) {
+    Params bed_only;
+    bed_only.supports_on_model = false;
+    Mesh low_plate = cs::test::box({-10, -2, 0}, {-8, 2, 3});
+    append(low_plate, cs::test::box({-8, -2, 1.5}, {0, 2, 3}));
+    const std::vector<std::pair<Mesh, Params>> cases = {
+        {cs::test::t_shape(), Params{}}, {cs::test::cantilever_over_box(), Params{}}, {low_plate, Params{}},
+        {cs::test::cantilever_over_box(), bed_only}};
+    for (size_t i = 0; i < cases.size(); ++i) {
+        SCOPED_TRACE(i);
+        const auto& [mesh, p] = cases[i];
+        auto g = grow(mesh, p);
+        SupportTree hung = hang_leaves(*g->query, g->samples.samples, p);
+        EXPECT_TRUE(hung.struts.empty());
+        auto leaves = [](const SupportTree& t) {
+            std::vector<std::array<double, 6>> out;
+            for (const auto& n : t.nodes)
+                if (n.kind == NodeKind::Leaf) out.push_back({n.contact.x, n.contact.y, n.contact.z, n.tip.x, n.tip.y, n.tip.z});
+            std::sort(out.begin(), out.end());
+            return out;
+        };
+        ASSERT_FALSE(leaves(hung).empty() && hung.pillars.empty());
+        // A leaf lost in a dead end is no leaf of the grown tree; none is lost on these shapes.
+        EXPECT_EQ(leaves(g->tree), leaves(hung));
+        ASSERT_EQ(g->tree.pillars.size(), hung.pillars.size());
+        for (size_t k = 0; k < hung.pillars.size(); ++k) {
+            EXPECT_EQ(g->tree.pillars[k].top, hung.pillars[k].top);
+            EXPECT_EQ(g->tree.pillars[k].bottom, hung.pillars[k].bottom);
+        }
+        EXPECT_EQ(g->tree.stats.touching, hung.stats.touching);
+        EXPECT_EQ(g->tree.stats.bridged, hung.stats.bridged);
+        EXPECT_EQ(g->tree.stats.internal, hung.stats.internal);
+    }
 }
 
 TEST(GrowTree, NoSamplesNoTree) {
