@@ -172,24 +172,26 @@ std::string encode_zip(std::vector<std::pair<std::string, std::string>> entries)
         fail("open", &err);
     }
     zip_source_keep(buffer);  // still ours after zip_close, so the result can be read back
-    for (const auto& [name, data] : entries) {
-        zip_source_t* src = zip_source_buffer(archive, data.data(), data.size(), 0);
-        zip_int64_t index = src ? zip_file_add(archive, name.c_str(), src, ZIP_FL_ENC_UTF_8) : -1;
-        if (index < 0) {
-            if (src) zip_source_free(src);
-            zip_discard(archive);
-            zip_source_free(buffer);
-            fail(name.c_str(), &err);
-        }
-        zip_set_file_compression(archive, static_cast<zip_uint64_t>(index), ZIP_CM_DEFLATE, kDeflateLevel);
-        zip_file_set_mtime(archive, static_cast<zip_uint64_t>(index), kFixedMtime, 0);
-    }
-    if (zip_close(archive) < 0) {
+    // After the archive is open, libzip keeps the error in it: take it, drop everything, throw.
+    auto fail_archive = [&](const char* what) {
         zip_error_set(&err, zip_error_code_zip(zip_get_error(archive)), zip_error_code_system(zip_get_error(archive)));
         zip_discard(archive);
         zip_source_free(buffer);
-        fail("write", &err);
+        fail(what, &err);
+    };
+    for (const auto& [name, data] : entries) {
+        zip_source_t* src = zip_source_buffer(archive, data.data(), data.size(), 0);
+        if (!src) fail_archive(name.c_str());
+        zip_int64_t index = zip_file_add(archive, name.c_str(), src, ZIP_FL_ENC_UTF_8);
+        if (index < 0) {
+            zip_source_free(src);
+            fail_archive(name.c_str());
+        }
+        if (zip_set_file_compression(archive, static_cast<zip_uint64_t>(index), ZIP_CM_DEFLATE, kDeflateLevel) < 0 ||
+            zip_file_set_mtime(archive, static_cast<zip_uint64_t>(index), kFixedMtime, 0) < 0)
+            fail_archive(name.c_str());
     }
+    if (zip_close(archive) < 0) fail_archive("write");
     std::string out;
     zip_stat_t st;
     if (zip_source_stat(buffer, &st) == 0 && zip_source_open(buffer) == 0) {
