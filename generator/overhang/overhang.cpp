@@ -40,11 +40,9 @@ public:
     CoverGrid(double reach, double critical_angle) : grid_(reach), reach_(reach), angle_(critical_angle) {}
 
     void add(const Vec3& p) { grid_.insert(p, p); }
-    // `above`: how much higher than x a coverer may lie at most (beyond the surface rule);
-    // `reach`: at most the grid's own.
-    bool covered(const Vec3& x, double above = INFINITY) const { return covered_within(x, reach_, above); }
-    bool covered_within(const Vec3& x, double reach, double above = INFINITY) const {
-        return grid_.visit_near(x, 1, [&](const Vec3& q) { return q.z <= x.z + above && covers(q, x, reach, angle_); });
+    // `above`: how much higher than x a coverer may lie at most (beyond the surface rule).
+    bool covered(const Vec3& x, double above = INFINITY) const {
+        return grid_.visit_near(x, 1, [&](const Vec3& q) { return q.z <= x.z + above && covers(q, x, reach_, angle_); });
     }
 
 private:
@@ -109,10 +107,6 @@ private:
 
     XyGrid<double> z_;  // lattice point (i, j): the heights of its samples
     double s_, rise_;
-};
-
-struct EdgeSegment {
-    Vec3 a, b;
 };
 
 // Lattice samples of the overhang faces; marks the faces that caught one.
@@ -378,7 +372,7 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
     CoverGrid lattice{reach, o.critical_angle}, grid{lean_reach(o), o.critical_angle};
     for (const auto& p : lattice_samples(m, cls, s, res))
         if (p.z >= o.bed_height) res.samples.push_back({p, SampleKind::Face}), lattice.add(p);
-    auto edges = support_edges(m, cls, o, res);
+    res.edges = support_edges(m, cls, o, res);
     for (const auto& a : res.anchors) grid.add(a);
     res.point_overhangs = local_minima(m, o).size();
 
@@ -389,7 +383,7 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
         bool covered = lattice.covered(x, above) || grid.covered(x, above);
         return x.z >= o.bed_height && !covered && !rests(x);
     };
-    fill_demand(coverage_demand(m, cls, edges, o, kEdgeStepOfReach), o, needs, rests, [&](const Vec3& x, SampleKind kind) {
+    fill_demand(coverage_demand(m, cls, res.edges, o, kEdgeStepOfReach), o, needs, rests, [&](const Vec3& x, SampleKind kind) {
         grid.add(x);
         res.samples.push_back({x, kind});
     }, true);
@@ -398,8 +392,7 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
 }
 
 std::vector<Sample> top_up_samples(const Mesh& m, const OverhangOptions& o, const ModelQuery* model,
-                                   const std::vector<Vec3>& coverers) {
-    OverhangSamples res;
+                                   const OverhangSamples& sampled, const std::vector<Vec3>& coverers) {
     const double s = o.sampling_distance, reach = coverage_reach(s);
     auto cls = classify_faces(m, o);
     auto rests = [&](const Vec3& x) { return model && rests_on_material(*model, x, o.touching_space); };
@@ -411,13 +404,12 @@ std::vector<Sample> top_up_samples(const Mesh& m, const OverhangOptions& o, cons
         grid.add(c);
         if (on_lattice(c.x) && on_lattice(c.y)) cells.add(c);
     }
-    auto edges = support_edges(m, cls, o, res);
-    for (const auto& a : res.anchors) grid.add(a);
+    for (const auto& a : sampled.anchors) grid.add(a);
     std::vector<Sample> out;
     auto needs = [&](const Vec3& x, double above) {
         return x.z >= o.bed_height && !cells.full_cell_around(x, above) && !grid.covered(x, above) && !rests(x);
     };
-    fill_demand(coverage_demand(m, cls, edges, o, kStrictEdgeStepOfReach), o, needs, rests, [&](const Vec3& x, SampleKind kind) {
+    fill_demand(coverage_demand(m, cls, sampled.edges, o, kStrictEdgeStepOfReach), o, needs, rests, [&](const Vec3& x, SampleKind kind) {
         grid.add(x);
         out.push_back({x, kind});
     }, false);

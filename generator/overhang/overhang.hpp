@@ -36,10 +36,16 @@ struct Sample {
     SampleKind kind;
 };
 
+// A rim or ridge of the overhang that needs samples of its own (coverage is judged along it).
+struct EdgeSegment {
+    Vec3 a, b;
+};
+
 struct OverhangSamples {
     std::vector<Sample> samples;  // sorted from top to bottom, ties by x then y: deterministic
     std::vector<Vec3> anchors;    // inside corners where an overhang meets a wall below it: the
                                   // wall carries the overhang there (no support needed)
+    std::vector<EdgeSegment> edges;  // rims and ridges that need samples (top_up_samples reuses them)
     double overhang_area = 0;     // area of faces needing support (mm^2)
     std::size_t overhang_faces = 0, ridge_edges = 0, point_overhangs = 0;
     std::size_t topped_up = 0;    // samples added where built supports left a point beyond reach
@@ -88,9 +94,10 @@ void sort_top_down(std::vector<Sample>& samples);
 // the points that hold the overhang up, each at the height of the overhang it holds: a placed
 // contact (a tip's top moved aside from its sample under a curved overhang, a pillar moved off a
 // wall) and every sample that got no contact of its own (it rests on material, or was given up).
-// The same demand and the same rules as sample_overhangs; a coverer still on its lattice point
-// counts as that lattice point. Sorted as sample_overhangs sorts; empty when all is covered.
+// The same demand and the same rules as sample_overhangs, whose result `sampled` gives the rims,
+// ridges and inside corners; a coverer still on its lattice point counts as that lattice point.
+// Sorted as sample_overhangs sorts; empty when all is covered.
 std::vector<Sample> top_up_samples(const Mesh& m, const OverhangOptions& o, const ModelQuery* model,
-                                   const std::vector<Vec3>& coverers);
+                                   const OverhangSamples& sampled, const std::vector<Vec3>& coverers);
 
 }  // namespace cs

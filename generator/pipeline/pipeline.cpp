@@ -287,7 +287,7 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     // the tree grows); new tips cover their own points, so once is enough.
     auto extra = sw.time("coverage top-up", progress, [&] {
         SupportTree hung = hang_leaves(*query, r.samples.samples, p);
-        auto more = top_up_samples(r.model, oo, query.get(), coverers(hung, r.samples.samples));
+        auto more = top_up_samples(r.model, oo, query.get(), r.samples, coverers(hung, r.samples.samples));
         std::erase_if(more, [&](const Sample& s) { return in_blocker(s.p, job.edits.blockers, p); });
         return more;
     });

@@ -568,9 +568,10 @@ namespace {
 struct Plate {
     Mesh mesh = box({0, 0, 10}, {20, 20, 12});
     OverhangOptions o = default_options();
+    OverhangSamples sampled = sample_overhangs(mesh, o);
     std::vector<Vec3> tips;
     Plate() {
-        for (const auto& s : sample_overhangs(mesh, o).samples) tips.push_back(s.p);
+        for (const auto& s : sampled.samples) tips.push_back(s.p);
     }
 };
 
@@ -591,7 +592,7 @@ TEST(TopUp, SamplesAndTheirTopUpLeaveNoPointBeyondReach) {
             lean_gaps += uncovered(shapes[i], res, o, true).size();
             std::vector<Vec3> tips;
             for (const auto& x : res.samples) tips.push_back(x.p);
-            for (const auto& x : top_up_samples(shapes[i], o, nullptr, tips)) res.samples.push_back(x);
+            for (const auto& x : top_up_samples(shapes[i], o, nullptr, res, tips)) res.samples.push_back(x);
             auto holes = uncovered(shapes[i], res, o, true);
             EXPECT_TRUE(holes.empty()) << holes.size() << " uncovered, first at " << holes[0].x << ", " << holes[0].y
                                        << ", " << holes[0].z;
@@ -602,7 +603,7 @@ TEST(TopUp, SamplesAndTheirTopUpLeaveNoPointBeyondReach) {
 TEST(TopUp, NothingToAddWhereEveryTipStandsOnItsSample) {
     Plate plate;
     ASSERT_GT(plate.tips.size(), 10u);
-    EXPECT_TRUE(top_up_samples(plate.mesh, plate.o, nullptr, plate.tips).empty());
+    EXPECT_TRUE(top_up_samples(plate.mesh, plate.o, nullptr, plate.sampled, plate.tips).empty());
 }
 
 TEST(TopUp, ATipMovedAsideGetsTheGapItLeavesFilled) {
@@ -615,7 +616,7 @@ TEST(TopUp, ATipMovedAsideGetsTheGapItLeavesFilled) {
     ASSERT_NE(moved, plate.tips.end());
     const Vec3 was = *moved;
     moved->x += 0.6;
-    auto extra = top_up_samples(plate.mesh, plate.o, nullptr, plate.tips);
+    auto extra = top_up_samples(plate.mesh, plate.o, nullptr, plate.sampled, plate.tips);
     ASSERT_FALSE(extra.empty());
     // What was added covers every point the move left open, and lies near where the tip was.
     std::vector<Vec3> all = plate.tips;
