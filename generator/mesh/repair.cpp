@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "core/errors.hpp"
+#include "mesh/fill_holes.hpp"
 
 namespace cs {
 namespace {
@@ -306,7 +307,13 @@ void add_warnings(const std::string& name, RepairReport& r) {
     warn(r.duplicates_removed, "duplicate triangles removed");
     warn(r.flipped, "triangles flipped to face outward");
     warn(r.inner_shells_removed, "shells lying wholly inside another solid removed (they are not surfaces of the print)");
-    warn(r.boundary_edges, "open (boundary) edges: the mesh has holes; overhangs near them are still supported");
+    if (r.holes_filled)
+        r.warnings.push_back(name + ": " + std::to_string(r.holes_filled) + " hole" + (r.holes_filled > 1 ? "s" : "") +
+                             " closed with a patch (" + std::to_string(r.boundary_edges - r.boundary_edges_left) +
+                             " open edges); the slicers close them the same way. Look over the patched surfaces in "
+                             "the .model.stl");
+    warn(r.boundary_edges_left,
+         "open (boundary) edges left: holes that could not be closed; overhangs near them are still supported");
     warn(r.nonmanifold_edges, "non-manifold edges (shared by more than two triangles); carried on");
 }
 
@@ -333,6 +340,13 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
         for (size_t i = 0; i < m.faces.size(); ++i)
             if (!dropped[i]) kept.push_back(m.faces[i]);
         m.faces = std::move(kept);
+    }
+    if (r.boundary_edges) {
+        // A slicer closes every open outline and prints the inside; closing the holes makes our
+        // generator see the same solid (it grew struts inside stanford_bunny's open base).
+        HoleFilling h = fill_holes(m);
+        r.holes_filled = h.filled;
+        r.boundary_edges_left = h.edges_left_open;
     }
 
     int shells = 0;

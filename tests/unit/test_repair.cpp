@@ -142,18 +142,45 @@ TEST(Repair, FullyInvertedBoxIsFlipped) {
     EXPECT_TRUE(has_warning(r, "12 triangles flipped to face outward"));
 }
 
-TEST(Repair, OpenBoxReportsBoundaryEdgesAndCarriesOn) {
+TEST(Repair, OpenBoxIsClosedWithAPatchAndAWarning) {
     Mesh m = box({0, 0, 0}, {10, 10, 10});
     m.faces.erase(m.faces.begin() + 2, m.faces.begin() + 4);  // the top (z = 10) face
     RepairReport r;
     Mesh out;
     ASSERT_NO_THROW(out = repair(to_soup(m), r));
     EXPECT_EQ(r.boundary_edges, 4u);
+    EXPECT_EQ(r.holes_filled, 1u);
+    EXPECT_EQ(r.boundary_edges_left, 0u);
     EXPECT_EQ(r.nonmanifold_edges, 0u);
-    EXPECT_EQ(out.faces.size(), 10u);
+    EXPECT_EQ(out.faces.size(), 12u);
     EXPECT_EQ(r.flipped, 0u);
+    EXPECT_TRUE(is_closed_and_consistent(out));
+    EXPECT_NEAR(signed_volume(out), 1000, 1e-9);
+    for (const auto& f : out.faces)  // the patch is the top again, facing up
+        if (out.vertices[f[0]].z == 10 && out.vertices[f[1]].z == 10 && out.vertices[f[2]].z == 10)
+            EXPECT_GT(face_normal_unnormalized(out, f).z, 0);
+    EXPECT_TRUE(has_warning(r, "1 hole closed with a patch (4 open edges)"));
+}
+
+TEST(Repair, ABentHoleIsClosedIntoAConsistentSolid) {
+    // The top and one side missing: one loop of six edges that does not lie in a plane.
+    Mesh m = box({0, 0, 0}, {10, 10, 10});
+    std::vector<Triangle> kept;
+    for (const auto& f : m.faces) {
+        const Vec3 n = face_normal_unnormalized(m, f);
+        if (n.z > 0 || n.x > 0) continue;
+        kept.push_back(f);
+    }
+    ASSERT_EQ(kept.size(), 8u);
+    m.faces = kept;
+    RepairReport r;
+    Mesh out = repair(to_soup(m), r);
+    EXPECT_EQ(r.boundary_edges, 6u);
+    EXPECT_EQ(r.holes_filled, 1u);
+    EXPECT_EQ(r.boundary_edges_left, 0u);
+    EXPECT_TRUE(is_closed_and_consistent(out));
+    EXPECT_EQ(out.faces.size(), 12u);  // a six-edge loop takes four triangles
     EXPECT_GT(signed_volume(out), 0);
-    EXPECT_TRUE(has_warning(r, "4 open (boundary) edges"));
 }
 
 TEST(Repair, OpenInvertedBoxIsTurnedOutward) {
