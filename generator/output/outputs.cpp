@@ -36,9 +36,7 @@ json supports_json(const Supports& s, const Params& p) {
     const auto& st = s.sized.tree.stats;
     size_t tips = 0;
     for (const auto& b : s.bodies) tips += b.kind == BodyKind::Tip;
-    std::vector<double> widths;
-    for (const auto& z : s.sized.struts) widths.push_back(0.5 * (z.top_width + z.bottom_width));
-    const auto cost = estimate_slicer_cost(s.sized.tree, widths, p);
+    const auto cost = estimate_slicer_cost(s.sized.tree, mean_strut_widths(s.sized), p);
     return {{"struts", s.sized.tree.struts.size()},
             {"nodes", s.sized.tree.nodes.size()},
             {"tips", tips},
@@ -59,6 +57,7 @@ json supports_json(const Supports& s, const Params& p) {
             {"support_volume_mm3", s.volume},
             {"worst_length_to_width", s.sized.worst_length_to_width},
             {"strength_violations", s.sized.strength_violations},
+            {"lean_merging_leaves", s.sized.tree.grown_with.lean_merging_leaves},
             {"slicer_estimate", {{"island_layers", cost.island_layers},
                                  {"most_islands", cost.most_islands},
                                  {"outline_mm", cost.outline_mm},

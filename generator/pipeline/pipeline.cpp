@@ -104,7 +104,21 @@ Supports build_supports(const Mesh& placed, const std::vector<Sample>& samples, 
 
 Supports build_supports(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
                         const std::vector<int>& omit) {
-    return finish_supports(grow_tree(q, samples, p), p, omit);
+    return finish_supports(grow_cheaper_tree(q, samples, p), p, omit);
+}
+
+SupportTree grow_cheaper_tree(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p) {
+    SupportTree plain = grow_tree(q, samples, p);
+    if (p.strategy != Strategy::tree) return plain;
+    SupportTree leaning = grow_tree(q, samples, p, {.lean_merging_leaves = true});
+    auto seconds = [&](const SupportTree& t) {
+        const SizedTree sized = size_struts(t, p);
+        return estimate_slicer_cost(sized.tree, mean_strut_widths(sized), p).seconds;
+    };
+    // A tree that gives up more samples is cheaper to print for that alone: never a saving.
+    const bool loses_nothing = leaning.stats.dropped <= plain.stats.dropped &&
+                               leaning.stats.dropped_branches <= plain.stats.dropped_branches;
+    return loses_nothing && seconds(leaning) < seconds(plain) ? std::move(leaning) : std::move(plain);
 }
 
 Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit) {
@@ -296,7 +310,7 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         r.samples.samples.insert(r.samples.samples.end(), extra.begin(), extra.end());
         sort_top_down(r.samples.samples);
     }
-    SupportTree grown = sw.time("tree", progress, [&] { return grow_tree(*query, r.samples.samples, p); });
+    SupportTree grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, r.samples.samples, p); });
     // The user's omitted struts are numbered in the final tree (the one the .scad shows).
     r.supports = sw.time("struts", progress, [&] { return finish_supports(std::move(grown), p, job.edits.omit_struts); });
     Params columns = p;

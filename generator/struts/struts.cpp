@@ -118,6 +118,13 @@ SizedTree size_struts(SupportTree tree, const Params& p) {
     return s;
 }
 
+std::vector<double> mean_strut_widths(const SizedTree& sized) {
+    std::vector<double> widths;
+    widths.reserve(sized.struts.size());
+    for (const auto& z : sized.struts) widths.push_back(0.5 * (z.top_width + z.bottom_width));
+    return widths;
+}
+
 std::vector<Body> build_bodies(const SizedTree& sized, const Params& p) {
     std::vector<Body> bodies;
     const auto& nodes = sized.tree.nodes;

@@ -51,6 +51,10 @@ struct SizedTree {
 
 SizedTree size_struts(SupportTree tree, const Params& p);
 
+// Each strut's mean width (the average of its end widths), parallel to sized.tree.struts: what
+// estimate_slicer_cost (tree.hpp) takes.
+std::vector<double> mean_strut_widths(const SizedTree& sized);
+
 enum class BodyKind { Strut, Tip, ContactTip, Foot, Pillar };
 enum class Profile { N, Square };
 

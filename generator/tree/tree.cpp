@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <queue>
+#include <utility>
 
 #include "core/rules.hpp"
 #include "query/model_query.hpp"
@@ -20,8 +22,8 @@ namespace {
 // first that fits, or steps down, or undoes and drops.
 class Sweep {
 public:
-    Sweep(const ModelQuery& model, const Params& p)
-        : model_(model), p_(p), fan_(p.critical_angle), cx_{model, p, fan_, tree()},
+    Sweep(const ModelQuery& model, const Params& p, GrowOptions options = {})
+        : model_(model), p_(p), options_(options), fan_(p.critical_angle), cx_{model, p, fan_, tree()},
           active_nodes_(std::max(2.0 * p.sampling_distance, 1.0)) {}
 
     SupportTree hang_only(const std::vector<Sample>& samples) {
@@ -39,6 +41,8 @@ public:
             if (!active_[id]) continue;
             support(id);
         }
+        if (tree()) raise_merges();
+        t_.grown_with = options_;
         std::erase_if(t_.struts, [](const Strut& s) { return s.top < 0; });  // dropped branches
         space_feet();
         count_from_tree();
@@ -116,6 +120,7 @@ private:
 
     void hang_leaves(const std::vector<Sample>& samples) {
         const double tip = p_.gap + p_.tip_length;
+        std::vector<int> leaves;
         for (const auto& s : samples) {
             // Start just below the sample so the ray does not report the sample's own face.
             const Vec3 start = s.p - Vec3{0, 0, kTreeTuning.ray_start_below_sample};
@@ -158,8 +163,9 @@ private:
                 ++t_.stats.dropped;
                 continue;
             }
-            activate(leaf);
+            leaves.push_back(leaf);
         }
+        for (int leaf : leaves) activate(leaf);
     }
 
     // Under a low overhang a pillar, placed by its whole footprint (struts/placement.hpp); where
@@ -178,6 +184,7 @@ private:
     // Takes the first candidate whose strut (and what it joins) fits; false when none does.
     bool take_first_clear(int id, const std::vector<Candidate>& cands) {
         for (const auto& c : cands) {
+            if (c.type == Target::Merge && options_.lean_merging_leaves && merge_leaning(id, c)) return true;
             if (c.type == Target::SteepModel || !clear(id, c)) continue;
             if (c.type == Target::Merge && (!clear(c.other, c.point) || !can_escape(c.point, merged_estimate(id, c))))
                 continue;
@@ -189,6 +196,100 @@ private:
             return true;
         }
         return false;
+    }
+
+    // Two fresh leaves (nothing joined into them yet) lean their tips towards each other, as far as
+    // a tip may slant (clear_tip_foot's limit) while their feet stay half a strut apart: where
+    // the feet go, or nothing when either tip would not clear the model there.
+    std::optional<std::pair<Vec3, Vec3>> leaned_pair(int u, int v) const {
+        auto fresh_leaf = [&](int w) { return t_.nodes[w].kind == NodeKind::Leaf && in_struts_[w].empty(); };
+        if (!fresh_leaf(u) || !fresh_leaf(v)) return std::nullopt;
+        const Vec3 a = t_.nodes[u].p, b = t_.nodes[v].p;
+        const double keep = 0.5 * p_.d_min;
+        const double d = horizontal_distance(a, b);
+        if (d <= keep) return std::nullopt;
+        // A tip may slant 0.9 of the critical angle over its own height (a tip under a slope is
+        // shorter than tip_length).
+        auto slant = [&](int w) { return 0.9 * fan_.tan_c * (t_.nodes[w].tip.z - t_.nodes[w].p.z); };
+        const Vec3 dir = Vec3{b.x - a.x, b.y - a.y, 0} / d;
+        const double shift = std::min({0.5 * (d - keep), slant(u), slant(v)});
+        const Vec3 a2 = a + dir * shift, b2 = b - dir * shift;
+        auto leans = [&](int w, const Vec3& to) {
+            const Vec3& tip = t_.nodes[w].tip;
+            return horizontal_distance(to, tip) <= slant(w) && square_is_clear(model_, to, p_.d_min) &&
+                   prism_is_clear(model_, to, p_.d_min, tip, p_.tip_diameter) && can_escape(to, p_.d_min);
+        };
+        if (!leans(u, a2) || !leans(v, b2)) return std::nullopt;
+        return std::pair{a2, b2};
+    }
+
+    // Leaves about to merge lean first (GrowOptions::lean_merging_leaves): they meet a layer or two
+    // below their tips instead of a strut's drop further down. False, with nothing changed, when
+    // either cannot lean or the nearer merge does not fit.
+    bool merge_leaning(int id, const Candidate& c) {
+        const int other = c.other;
+        const auto leaned = leaned_pair(id, other);
+        if (!leaned) return false;
+        const Vec3 a = t_.nodes[id].p, b = t_.nodes[other].p;
+        const auto [a2, b2] = *leaned;
+        const Vec3 m = merge_point(a2, b2, fan_.tan_c);
+        if (m.z < p_.layer_height) return false;
+        const Candidate c2{distance(a2, m), m == b2 ? Target::InCone : Target::Merge, a2.z - m.z, other, m, {}};
+        move_node(id, a2);
+        move_node(other, b2);
+        const bool fits =
+            clear(id, c2) && (c2.type == Target::InCone
+                                  ? can_escape(m, merged_width(p_, {width_[other], bottom_width(id, m)}))
+                                  : clear(other, m) && can_escape(m, merged_estimate(id, c2)));
+        if (fits) {
+            accept(id, c2);
+            return true;
+        }
+        move_node(id, a);
+        move_node(other, b);
+        return false;
+    }
+    void move_node(int v, const Vec3& to) {
+        const bool listed = active_[v] && !alone_[v];
+        if (listed) active_nodes_.remove(v, t_.nodes[v].p);
+        t_.nodes[v].p = to;
+        if (listed) active_nodes_.insert(v, to);
+    }
+
+    // After the sweep: where two leaves merge, they lean their tips towards each other and the
+    // merge rises to meet them; a merge below a raised one rises too, to where the cones of its
+    // parents now meet. Under a flat ceiling each leaf's own strut down to its first merge is an
+    // island on every layer, and a slicer pays for each. The tree keeps its shape; a node stays
+    // where it was when anything would not fit.
+    void raise_merges() {
+        std::vector<int> out(t_.nodes.size(), -1), merges;
+        for (int e = 0; e < static_cast<int>(t_.struts.size()); ++e)
+            if (t_.struts[e].top >= 0) out[t_.struts[e].top] = e;
+        for (int m = 0; m < static_cast<int>(t_.nodes.size()); ++m)
+            if (t_.nodes[m].kind == NodeKind::Merge && in_struts_[m].size() == 2 && out[m] >= 0) merges.push_back(m);
+        // Top down, so each merge sees where its parents ended up.
+        std::stable_sort(merges.begin(), merges.end(), [&](int x, int y) { return t_.nodes[x].p.z > t_.nodes[y].p.z; });
+        for (int m : merges) {
+            int u = t_.struts[in_struts_[m][0]].top, v = t_.struts[in_struts_[m][1]].top;
+            if (u < 0 || v < 0) continue;
+            if (t_.nodes[u].p.z < t_.nodes[v].p.z) std::swap(u, v);
+            raise_merge(m, u, v, t_.struts[out[m]].bottom);
+        }
+    }
+    void raise_merge(int m, int hi, int lo, int below) {
+        const Vec3 a = t_.nodes[hi].p, b = t_.nodes[lo].p, old = t_.nodes[m].p;
+        const auto leaned = leaned_pair(hi, lo);
+        const bool leaves = t_.nodes[hi].kind == NodeKind::Leaf && t_.nodes[lo].kind == NodeKind::Leaf;
+        if (leaves && !leaned) return;
+        const Vec3 a2 = leaned ? leaned->first : a, b2 = leaned ? leaned->second : b;
+        const Vec3 m2 = merge_point(a2, b2, fan_.tan_c);
+        if (m2.z <= old.z + 1e-6 || m2 == b2) return;  // it would not rise (beyond rounding)
+        t_.nodes[hi].p = a2, t_.nodes[lo].p = b2, t_.nodes[m].p = m2;
+        const Vec3& to = t_.nodes[below].p;
+        const bool fits = angle_from_vertical_deg(m2, to) <= p_.critical_angle + 1e-9 && clear(hi, m2) &&
+                          clear(lo, m2) && clear(m, to, -1, t_.nodes[below].kind == NodeKind::ModelContact) &&
+                          can_escape(m2, width_[m]);
+        if (!fits) t_.nodes[hi].p = a, t_.nodes[lo].p = b, t_.nodes[m].p = old;
     }
 
     bool clear(int from, const Vec3& to, double clearance = -1, bool onto_model = false) const {
@@ -432,6 +533,7 @@ private:
 
     const ModelQuery& model_;
     const Params& p_;
+    GrowOptions options_;
     ConeFan fan_;
     CandidateContext cx_;
     SupportTree t_;
@@ -455,8 +557,9 @@ double SupportTree::total_length() const {
     return l;
 }
 
-SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p) {
-    return Sweep(model, p).run(samples);
+SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
+                      GrowOptions options) {
+    return Sweep(model, p, options).run(samples);
 }
 
 SupportTree hang_leaves(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p) {

@@ -65,11 +65,22 @@ struct TreeStats {
     std::size_t undone = 0;               // joins taken back because the joined node had nowhere to go
 };
 
+// Ways to grow the same tree. Each is a greedy choice that helps some models and costs others;
+// the pipeline grows the tree both ways and keeps the one estimate_slicer_cost finds cheaper.
+struct GrowOptions {
+    // Two leaves about to merge lean their tips towards each other first (as far as a tip may
+    // slant), so they meet a layer or two below the tips. Locally always fewer islands; but the
+    // merged node then sits higher and the sweep's later choices change. Over nine benchmark
+    // models in PrusaSlicer: support time -7 to -21 % on five, +2 to +12 % on four.
+    bool lean_merging_leaves = false;
+};
+
 struct SupportTree {
     std::vector<Node> nodes;
     std::vector<Strut> struts;
     std::vector<Pillar> pillars;
     TreeStats stats;
+    GrowOptions grown_with;  // how the sweep grew it
 
     double total_length() const;
 };
@@ -94,8 +105,11 @@ SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>&
 
 // Grows the support tree (or the columns baseline, by p.strategy) for the given samples.
 // The sweep (tree.cpp) keeps the books; tree/candidates.hpp finds where a node may go,
-// tree/clearance.hpp whether it fits, tree/tuning.hpp holds the search's constants.
-SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p);
+// tree/clearance.hpp whether it fits, tree/tuning.hpp holds the search's constants. After the
+// sweep, merges of two leaves rise to meet the leaves (their tips leaning towards each other),
+// and merges below them follow; the tree keeps its shape.
+SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
+                      GrowOptions options = {});
 
 // The tree before it grows: each sample's leaf (its tip placed), pillar, or the reason it has
 // neither (touching, bridged, dropped), exactly as grow_tree starts from them; no struts. What

@@ -8,6 +8,8 @@
 #include <set>
 
 #include "overhang/overhang.hpp"
+#include "pipeline/pipeline.hpp"
+#include "struts/struts.hpp"
 #include "query/model_query.hpp"
 #include "shapes.hpp"
 #include "support.hpp"
@@ -460,6 +462,64 @@ TEST(GrowTree, BranchesJoinWhenTheJoinLeavesFewerIslands) {
     auto far = two_samples(40, p);
     EXPECT_EQ(far->tree.stats.merges, 0u);
     EXPECT_EQ(far->tree.stats.bed_contacts, 2u);
+}
+
+TEST(GrowTree, TwoLeavesLeanTheirTipsAndMeetJustBelowThem) {
+    // 2.5 mm apart (the sampling lattice) under a flat ceiling: standing straight, the leaves' cones
+    // meet 2.5 / (2 tan 50) = 1.05 mm below them, five layers each leaf is an island of its own. Each
+    // tip leans as far as a tip may (0.9 of the critical angle over its height) until the feet are
+    // half a strut apart: the merge is then 0.5 / (2 tan 50) = 0.21 mm below, about one layer.
+    // Either way of growing does it (GrowOptions: during the sweep, or after it).
+    for (bool lean : {false, true}) {
+        SCOPED_TRACE(lean ? "leaning during the sweep" : "raised after the sweep");
+        Params p;
+        auto g = std::make_unique<Grown>();
+        g->model = cs::test::box({100, 100, 0}, {101, 101, 1});
+        g->query = std::make_unique<ModelQuery>(g->model);
+        g->samples.samples = {{{0, 0, 12}, SampleKind::Face}, {{2.5, 0, 12}, SampleKind::Face}};
+        g->tree = grow_tree(*g->query, g->samples.samples, p, {.lean_merging_leaves = lean});
+        expect_valid_tree(*g, p);
+        ASSERT_EQ(g->tree.stats.merges, 1u);
+        const double tan_c = std::tan(p.critical_angle * kDeg);
+        for (const Node& n : g->tree.nodes) {
+            if (n.kind == NodeKind::Leaf) {
+                EXPECT_NEAR(horizontal_distance(n.tip, n.contact), 0, 1e-9) << "the tip top stays under its sample";
+                EXPECT_LE(horizontal_distance(n.p, n.tip), 0.9 * tan_c * (n.tip.z - n.p.z) + 1e-9);
+            }
+            if (n.kind == NodeKind::Merge) {
+                const Node& leaf = g->tree.nodes[0];
+                EXPECT_NEAR(leaf.p.z - n.p.z, 0.5 * p.d_min / (2 * tan_c), 1e-6);
+            }
+        }
+    }
+}
+
+TEST(GrowCheaperTree, KeepsTheWayTheSlicerEstimatePrefersUnlessItDropsMore) {
+    Params p;
+    for (const Mesh& m : {cs::test::table_shape(), cs::test::bridge_shape(), cs::test::cantilever_over_box()}) {
+        ModelQuery q(m);
+        const auto samples = sample_overhangs(m, {p.critical_angle, p.sampling_distance, p.layer_height}).samples;
+        auto seconds = [&](const SupportTree& t) {
+            const SizedTree sized = size_struts(t, p);
+            return estimate_slicer_cost(sized.tree, mean_strut_widths(sized), p).seconds;
+        };
+        const SupportTree plain = grow_tree(q, samples, p), leaning = grow_tree(q, samples, p, {.lean_merging_leaves = true});
+        const SupportTree kept = grow_cheaper_tree(q, samples, p);
+        const bool leaning_wins = leaning.stats.dropped <= plain.stats.dropped &&
+                                  leaning.stats.dropped_branches <= plain.stats.dropped_branches &&
+                                  seconds(leaning) < seconds(plain);
+        EXPECT_EQ(kept.grown_with.lean_merging_leaves, leaning_wins);
+        EXPECT_LE(kept.stats.dropped, plain.stats.dropped);
+        EXPECT_LE(seconds(kept), seconds(plain));
+        ASSERT_EQ(kept.nodes.size(), (leaning_wins ? leaning : plain).nodes.size());
+    }
+    // The columns baseline has no merges to lean into: grown once, plainly.
+    Params columns;
+    columns.strategy = Strategy::columns;
+    const Mesh m = cs::test::table_shape();
+    ModelQuery q(m);
+    const auto samples = sample_overhangs(m, {columns.critical_angle, columns.sampling_distance, columns.layer_height}).samples;
+    EXPECT_FALSE(grow_cheaper_tree(q, samples, columns).grown_with.lean_merging_leaves);
 }
 
 TEST(GrowTree, TreeCostsTheSlicerLessThanColumns) {
