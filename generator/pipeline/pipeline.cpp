@@ -108,17 +108,21 @@ Supports build_supports(const ModelQuery& q, const std::vector<Sample>& samples,
 }
 
 SupportTree grow_cheaper_tree(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p) {
-    SupportTree plain = grow_tree(q, samples, p);
-    if (p.strategy != Strategy::tree) return plain;
-    SupportTree leaning = grow_tree(q, samples, p, {.lean_merging_leaves = true});
+    SupportTree best = grow_tree(q, samples, p);
+    if (p.strategy != Strategy::tree) return best;
     auto seconds = [&](const SupportTree& t) {
         const SizedTree sized = size_struts(t, p);
         return estimate_slicer_cost(sized.tree, mean_strut_widths(sized), p).seconds;
     };
-    // A tree that gives up more samples is cheaper to print for that alone: never a saving.
-    const bool loses_nothing = leaning.stats.dropped <= plain.stats.dropped &&
-                               leaning.stats.dropped_branches <= plain.stats.dropped_branches;
-    return loses_nothing && seconds(leaning) < seconds(plain) ? std::move(leaning) : std::move(plain);
+    const TreeStats plain = best.stats;
+    double best_seconds = seconds(best);
+    for (const GrowOptions& way : {GrowOptions{.lean_merging_leaves = true}, GrowOptions{.pair_leaves_first = true}}) {
+        SupportTree t = grow_tree(q, samples, p, way);
+        // A tree that gives up more samples is cheaper to print for that alone: never a saving.
+        if (t.stats.dropped > plain.dropped || t.stats.dropped_branches > plain.dropped_branches) continue;
+        if (const double s = seconds(t); s < best_seconds) best = std::move(t), best_seconds = s;
+    }
+    return best;
 }
 
 Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <queue>
+#include <tuple>
 #include <utility>
 
 #include "core/rules.hpp"
@@ -165,7 +166,34 @@ private:
             }
             leaves.push_back(leaf);
         }
+        if (tree() && options_.pair_leaves_first) lean_tips_in_pairs(leaves);
         for (int leaf : leaves) activate(leaf);
+    }
+
+    // GrowOptions::pair_leaves_first: neighbouring leaves at one height, nearest pairs first,
+    // lean their tips towards each other before the sweep starts (leaned_pair).
+    void lean_tips_in_pairs(const std::vector<int>& leaves) {
+        const double reach = 2 * 0.9 * fan_.tan_c * p_.tip_length + 0.5 * p_.d_min;  // leaned_pair's farthest
+        XyGrid<int> grid(std::max(reach, 1.0));
+        for (int v : leaves) grid.insert(t_.nodes[v].p, v);
+        std::vector<std::tuple<double, int, int>> pairs;
+        for (int v : leaves)
+            grid.visit_near(t_.nodes[v].p, 1, [&](int u) {
+                if (u <= v) return;
+                const Vec3 &a = t_.nodes[v].p, &b = t_.nodes[u].p;
+                const double d = horizontal_distance(a, b);
+                if (d <= reach && std::abs(a.z - b.z) <= p_.layer_height) pairs.emplace_back(d, v, u);
+            });
+        std::sort(pairs.begin(), pairs.end());
+        std::vector<char> taken(t_.nodes.size(), 0);
+        for (const auto& [d, v, u] : pairs) {
+            if (taken[v] || taken[u]) continue;
+            auto l = leaned_pair(v, u);
+            if (!l) continue;
+            t_.nodes[v].p = l->first;
+            t_.nodes[u].p = l->second;
+            taken[v] = taken[u] = 1;
+        }
     }
 
     // Under a low overhang a pillar, placed by its whole footprint (struts/placement.hpp); where
