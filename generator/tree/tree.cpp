@@ -173,7 +173,7 @@ private:
     // GrowOptions::pair_leaves_first: neighbouring leaves at one height, nearest pairs first,
     // lean their tips towards each other before the sweep starts (leaned_pair).
     void lean_tips_in_pairs(const std::vector<int>& leaves) {
-        const double reach = 2 * 0.9 * fan_.tan_c * p_.tip_length + 0.5 * p_.d_min;  // leaned_pair's farthest
+        const double reach = 2 * max_tip_slant(p_.tip_length) + leaned_feet_apart();  // leaned_pair's farthest
         XyGrid<int> grid(std::max(reach, 1.0));
         for (int v : leaves) grid.insert(t_.nodes[v].p, v);
         std::vector<std::tuple<double, int, int>> pairs;
@@ -226,6 +226,11 @@ private:
         return false;
     }
 
+    // How far a tip of this height may lean: 0.9 of the critical angle, clear_tip_foot's limit.
+    double max_tip_slant(double height) const { return 0.9 * fan_.tan_c * height; }
+    // Leaned tips keep their feet half a strut apart, so the merge below them is a real strut.
+    double leaned_feet_apart() const { return 0.5 * p_.d_min; }
+
     // Two fresh leaves (nothing joined into them yet) lean their tips towards each other, as far as
     // a tip may slant (clear_tip_foot's limit) while their feet stay half a strut apart: where
     // the feet go, or nothing when either tip would not clear the model there.
@@ -233,12 +238,11 @@ private:
         auto fresh_leaf = [&](int w) { return t_.nodes[w].kind == NodeKind::Leaf && in_struts_[w].empty(); };
         if (!fresh_leaf(u) || !fresh_leaf(v)) return std::nullopt;
         const Vec3 a = t_.nodes[u].p, b = t_.nodes[v].p;
-        const double keep = 0.5 * p_.d_min;
+        const double keep = leaned_feet_apart();
         const double d = horizontal_distance(a, b);
         if (d <= keep) return std::nullopt;
-        // A tip may slant 0.9 of the critical angle over its own height (a tip under a slope is
-        // shorter than tip_length).
-        auto slant = [&](int w) { return 0.9 * fan_.tan_c * (t_.nodes[w].tip.z - t_.nodes[w].p.z); };
+        // Over its own height: a tip under a slope is shorter than tip_length.
+        auto slant = [&](int w) { return max_tip_slant(t_.nodes[w].tip.z - t_.nodes[w].p.z); };
         const Vec3 dir = Vec3{b.x - a.x, b.y - a.y, 0} / d;
         const double shift = std::min({0.5 * (d - keep), slant(u), slant(v)});
         const Vec3 a2 = a + dir * shift, b2 = b - dir * shift;
