@@ -55,6 +55,7 @@ json supports_json(const Supports& s, const Params& p) {
             {"bodies", s.bodies.size()},
             {"total_strut_length_mm", s.length},
             {"support_volume_mm3", s.volume},
+            {"bodies_volume_mm3", s.bodies_volume},
             {"worst_length_to_width", s.sized.worst_length_to_width},
             {"strength_violations", s.sized.strength_violations},
             {"grown_with",

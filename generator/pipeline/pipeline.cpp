@@ -17,6 +17,7 @@
 #include "mesh/mesh_io.hpp"
 #include "output/render.hpp"
 #include "query/model_query.hpp"
+#include "struts/solid_volume.hpp"
 #include "tree/tree.hpp"
 
 namespace cs {
@@ -131,7 +132,8 @@ Supports finish_supports(SupportTree grown, const Params& p, const std::vector<i
     s.sized = size_struts(prune_struts(std::move(grown), omit), p);
     s.bodies = build_bodies(s.sized, p);
     s.mesh = bodies_mesh(s.bodies, p.wall_thickness);
-    s.volume = signed_volume(s.mesh);  // bodies are separate closed shells: their volumes add
+    s.bodies_volume = signed_volume(s.mesh);  // separate closed shells: their volumes add
+    s.volume = solid_volume(s.bodies, p.wall_thickness);
     s.length = s.sized.tree.total_length();
     return s;
 }

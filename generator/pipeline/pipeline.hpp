@@ -52,7 +52,8 @@ struct Supports {
     std::vector<Strut> grown_struts;  // before omit_struts pruned them: the numbering edits refer to
     std::vector<Body> bodies;
     Mesh mesh;
-    double volume = 0;  // sum of the bodies' volumes (mm^3)
+    double volume = 0;         // of the support solid, overlaps at joints counted once (solid_volume), mm^3
+    double bodies_volume = 0;  // the bodies' volumes added up, overlaps counted twice, mm^3
     double length = 0;  // total strut length (mm)
 };
 

@@ -10,6 +10,7 @@
 #include "overhang/overhang.hpp"
 #include "query/model_query.hpp"
 #include "shapes.hpp"
+#include "struts/solid_volume.hpp"
 #include "struts/struts.hpp"
 #include "support.hpp"
 #include "tree/tree.hpp"
@@ -309,4 +310,94 @@ TEST(Bodies, FootExtraKeepsClearanceOrIsDropped) {
     double room = 3.0, extra = foot_extra(p, 1.0, room);
     EXPECT_GT(extra, 0);
     EXPECT_LE((0.5 * 1.0 + extra) * std::sqrt(2.0) + p.model_clearance, room + 1e-12);
+}
+
+// ---------------------------------------------------------------- solid_volume
+
+namespace {
+// Whether p is inside the closed mesh m: parity of a +x ray's crossings (a check that shares
+// nothing with solid_volume's slices and rows).
+bool inside_mesh(const Mesh& m, const Vec3& p) {
+    int crossings = 0;
+    for (const auto& f : m.faces) {
+        const Vec3 &a = m.vertices[f[0]], &b = m.vertices[f[1]], &c = m.vertices[f[2]];
+        // Barycentric test in the y-z plane, then the hit must lie at x > p.x.
+        double d = (b.y - a.y) * (c.z - a.z) - (c.y - a.y) * (b.z - a.z);
+        if (d == 0) continue;
+        double u = ((p.y - a.y) * (c.z - a.z) - (c.y - a.y) * (p.z - a.z)) / d;
+        double v = ((b.y - a.y) * (p.z - a.z) - (p.y - a.y) * (b.z - a.z)) / d;
+        if (u < 0 || v < 0 || u + v > 1) continue;
+        if (a.x + u * (b.x - a.x) + v * (c.x - a.x) > p.x) ++crossings;
+    }
+    return crossings % 2 == 1;
+}
+// The union's volume by counting lattice points (cell centres, spacing h) inside any body.
+double lattice_union_volume(const std::vector<Body>& bodies, double wall, double h) {
+    std::vector<Mesh> meshes;
+    Box3 box;
+    for (const auto& b : bodies) {
+        meshes.push_back(body_mesh(b, wall));
+        for (const auto& v : meshes.back().vertices) box.add(v);
+    }
+    long count = 0;
+    // Odd offsets keep the lattice off the bodies' corners and axis-aligned walls.
+    for (double z = box.min.z + 0.37 * h; z < box.max.z; z += h)
+        for (double y = box.min.y + 0.41 * h; y < box.max.y; y += h)
+            for (double x = box.min.x + 0.53 * h; x < box.max.x; x += h)
+                for (const auto& m : meshes)
+                    if (inside_mesh(m, {x, y, z})) {
+                        ++count;
+                        break;
+                    }
+    return count * h * h * h;
+}
+double bodies_sum(const std::vector<Body>& bodies, double wall) {
+    double v = 0;
+    for (const auto& b : bodies) v += signed_volume(body_mesh(b, wall));
+    return v;
+}
+}  // namespace
+
+TEST(SolidVolume, OverlappingCubesCountTheOverlapOnce) {
+    std::vector<Body> cubes = {{BodyKind::Strut, Profile::Square, {0, 0, 0}, {0, 0, 1}, 1, 1},
+                               {BodyKind::Strut, Profile::Square, {0.5, 0, 0}, {0.5, 0, 1}, 1, 1}};
+    EXPECT_NEAR(bodies_sum(cubes, 0.5), 2.0, 1e-12);
+    EXPECT_NEAR(solid_volume(cubes, 0.5), 1.5, 1e-9);
+    // Shifted half-way up as well: a quarter of a cube in common.
+    cubes[1].bottom.z = 0.5;
+    cubes[1].top.z = 1.5;
+    EXPECT_NEAR(solid_volume(cubes, 0.5), 1.75, 1e-9);
+}
+
+TEST(SolidVolume, ApartBodiesAddUpExactly) {
+    std::vector<Body> apart = {{BodyKind::Strut, Profile::N, {0, 0, 0}, {2, 1, 6}, 2.0, 2.0},
+                               {BodyKind::Tip, Profile::Square, {10, 0, 3}, {10, 0, 4}, 0.8, 1.0},
+                               {BodyKind::Strut, Profile::Square, {0, 10, 0}, {0, 10, 0.05}, 1.0, 1.0}};  // thinner than a slice
+    EXPECT_NEAR(solid_volume(apart, 0.5), bodies_sum(apart, 0.5), 1e-9 * bodies_sum(apart, 0.5));
+    EXPECT_EQ(solid_volume({}, 0.5), 0.0);
+}
+
+TEST(SolidVolume, AJointMatchesAnIndependentLatticeCount) {
+    // Two slanted N struts merging into a wider square strut, each reaching into the joint, a tip
+    // on one leaf: the overlaps of a real merge.
+    const double wall = 0.5;
+    std::vector<Body> joint = {{BodyKind::Strut, Profile::N, {0, 0, 4.3}, {-3, 0.5, 9}, 1.6, 1.6},
+                               {BodyKind::Strut, Profile::N, {0, 0, 4.3}, {2.5, -1, 8}, 1.8, 1.6},
+                               {BodyKind::Strut, Profile::Square, {0, 0, 0}, {0, 0, 5}, 2.2, 2.0},
+                               {BodyKind::Tip, Profile::Square, {-3, 0.5, 8.8}, {-3, 0.5, 10}, 1.6, 0.8}};
+    const double sum = bodies_sum(joint, wall), solid = solid_volume(joint, wall);
+    const double lattice = lattice_union_volume(joint, wall, 0.04);
+    EXPECT_LT(solid, sum * 0.97) << "the overlaps are several percent of this joint";
+    EXPECT_NEAR(solid, lattice, 0.01 * lattice);
+}
+
+TEST(SolidVolume, GrownTreeSolidIsAtMostTheSumAndDeterministic) {
+    Params p;
+    auto g = grow(test::table_shape(), p);
+    auto bodies = build_bodies(size_struts(g->tree, p), p);
+    ASSERT_GT(bodies.size(), 10u);
+    const double solid = solid_volume(bodies, p.wall_thickness), sum = bodies_sum(bodies, p.wall_thickness);
+    EXPECT_LE(solid, sum * (1 + 1e-12));
+    EXPECT_GT(solid, 0.8 * sum);
+    EXPECT_EQ(solid, solid_volume(bodies, p.wall_thickness));
 }

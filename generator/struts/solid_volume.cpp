@@ -1,0 +1,120 @@
+#include "struts/solid_volume.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace cs {
+namespace {
+
+// Slice and row spacing, mm. Struts are 0.5-4 mm wide and meet over about their width; a tenth
+// of a millimetre each way samples the overlaps to well under 1 % (against OpenSCAD's exact union
+// on the test shape) and costs a few milliseconds on the largest benchmark trees.
+constexpr double kSliceStep = 0.1;
+constexpr double kRowStep = 0.05;
+
+struct Segment {
+    double x0, y0, x1, y1;
+};
+
+// Where the closed mesh `m` crosses the plane at height z: segments, each vertex on the plane
+// counted as above it so every crossing is seen exactly once.
+std::vector<Segment> cross_section(const Mesh& m, double z) {
+    std::vector<Segment> out;
+    for (const auto& f : m.faces) {
+        double pts[2][2];
+        int n = 0;
+        for (int k = 0; k < 3 && n < 2; ++k) {
+            const Vec3 &p = m.vertices[f[k]], &q = m.vertices[f[(k + 1) % 3]];
+            if ((p.z >= z) == (q.z >= z)) continue;
+            double s = (z - p.z) / (q.z - p.z);
+            pts[n][0] = p.x + s * (q.x - p.x);
+            pts[n][1] = p.y + s * (q.y - p.y);
+            ++n;
+        }
+        if (n == 2) out.push_back({pts[0][0], pts[0][1], pts[1][0], pts[1][1]});
+    }
+    return out;
+}
+
+struct Interval {
+    long row;
+    double x0, x1;
+};
+
+// The inside of one cross-section along each row it spans (even-odd over its crossings).
+void row_intervals(const std::vector<Segment>& segs, std::vector<Interval>& out) {
+    if (segs.empty()) return;
+    double lo = INFINITY, hi = -INFINITY;
+    for (const auto& s : segs) lo = std::min({lo, s.y0, s.y1}), hi = std::max({hi, s.y0, s.y1});
+    std::vector<double> xs;
+    for (long r = static_cast<long>(std::ceil(lo / kRowStep - 0.5)); (r + 0.5) * kRowStep <= hi; ++r) {
+        const double y = (r + 0.5) * kRowStep;
+        xs.clear();
+        for (const auto& s : segs)
+            if ((s.y0 >= y) != (s.y1 >= y)) xs.push_back(s.x0 + (y - s.y0) / (s.y1 - s.y0) * (s.x1 - s.x0));
+        std::sort(xs.begin(), xs.end());
+        for (std::size_t i = 0; i + 1 < xs.size(); i += 2) out.push_back({r, xs[i], xs[i + 1]});
+    }
+}
+
+// Length of the union of intervals sorted by (row, x0).
+double merged_length(const std::vector<Interval>& iv) {
+    double total = 0;
+    for (std::size_t i = 0; i < iv.size();) {
+        double a = iv[i].x0, b = iv[i].x1;
+        std::size_t j = i + 1;
+        for (; j < iv.size() && iv[j].row == iv[i].row; ++j) {
+            if (iv[j].x0 > b) total += b - a, a = iv[j].x0;
+            b = std::max(b, iv[j].x1);
+        }
+        total += b - a;
+        i = j;
+    }
+    return total;
+}
+
+}  // namespace
+
+double solid_volume(const std::vector<Body>& bodies, double wall) {
+    std::vector<Mesh> meshes;
+    meshes.reserve(bodies.size());
+    double exact_sum = 0;
+    // Bodies by the first slice they reach, so each slice visits only the bodies it cuts.
+    std::multimap<long, std::size_t> by_first_slice;
+    std::vector<long> last_slice;
+    for (const auto& b : bodies) {
+        meshes.push_back(body_mesh(b, wall));
+        exact_sum += signed_volume(meshes.back());
+        double lo = INFINITY, hi = -INFINITY;
+        for (const auto& v : meshes.back().vertices) lo = std::min(lo, v.z), hi = std::max(hi, v.z);
+        by_first_slice.emplace(static_cast<long>(std::ceil(lo / kSliceStep - 0.5)), meshes.size() - 1);
+        last_slice.push_back(static_cast<long>(std::floor(hi / kSliceStep - 0.5)));
+    }
+    if (meshes.empty()) return 0;
+    double sampled_sum = 0, sampled_union = 0;
+    std::vector<std::size_t> active;
+    std::vector<Interval> rows, one;
+    auto next = by_first_slice.begin();
+    for (long k = by_first_slice.begin()->first; next != by_first_slice.end() || !active.empty(); ++k) {
+        if (active.empty() && next->first > k) k = next->first;
+        for (; next != by_first_slice.end() && next->first <= k; ++next) active.push_back(next->second);
+        std::erase_if(active, [&](std::size_t i) { return last_slice[i] < k; });
+        rows.clear();
+        const double z = (k + 0.5) * kSliceStep;
+        for (std::size_t i : active) {
+            one.clear();
+            row_intervals(cross_section(meshes[i], z), one);
+            for (const auto& r : one) sampled_sum += r.x1 - r.x0;
+            rows.insert(rows.end(), one.begin(), one.end());
+        }
+        std::sort(rows.begin(), rows.end(),
+                  [](const Interval& a, const Interval& b) { return a.row != b.row ? a.row < b.row : a.x0 < b.x0; });
+        sampled_union += merged_length(rows);
+    }
+    // Bodies too thin to meet the grid at all: nothing to say about their overlaps.
+    if (sampled_sum <= 0) return exact_sum;
+    return exact_sum * (sampled_union / sampled_sum);
+}
+
+}  // namespace cs
