@@ -11,7 +11,9 @@ Per model (shared models at their benchmark.json scale, orientation kept):
              support_mesh_drop_down=false, profile mode "mesh"); our columns baseline the same way
   Prusa      none, grid, snug (model.stl); ours from our 3MF (<name>.prusa.3mf, per-volume settings);
              ours as model geometry (supported.stl)
-Each G-code is parsed by slicers/gcode_stats.py (retractions, travel, islands per layer) and deleted.
+Each G-code is parsed by slicers/gcode_stats.py (retractions, travel, islands per layer) and, for the
+routes that print our tree, by slicers/printed_bodies.py (cross-sections of our bodies the slicer left
+out), then deleted.
 Writes <out>/handoff.json (raw + derived), <out>/handoff.md (tables) and <out>/handoff.svg (chart).
 See bench/README.md.
 """
@@ -35,6 +37,7 @@ SLICE_PY = os.path.join(HERE, "slicers", "slice.py")
 sys.path.insert(0, os.path.join(HERE, "slicers"))
 sys.dont_write_bytecode = True
 import gcode_stats  # noqa: E402
+import printed_bodies  # noqa: E402
 
 DEFAULT_MODELS = ["u_overhang", "extruder_idler", "rocker_arm", "armadillo", "beast", "nefertiti"]
 
@@ -61,6 +64,9 @@ ROUTES = {
 # Routes whose supports print in the slicer's support sections (their islands are counted there).
 SUPPORT_SECTION_ROUTES = {"cura_normal", "cura_tree", "cura_ours_mesh", "cura_columns_mesh", "prusa_grid",
                           "prusa_snug"}
+# Routes whose G-code is searched for our tree's bodies, layer by layer (printed_bodies.py).
+PRINTED_BODIES_ROUTES = {"cura_ours_model", "cura_ours_mesh", "prusa_ours_3mf", "prusa_ours_model"}
+PROFILE = os.path.join(HERE, "slicers", "profile.json")
 # Routes that print our mesh (sliced volume is compared with the mesh volume).
 OURS = {"cura_ours_model": "tree", "cura_ours_mesh": "tree", "cura_columns_mesh": "columns",
         "prusa_ours_3mf": "tree", "prusa_ours_model": "tree"}
@@ -150,6 +156,11 @@ def slice_route(args, key, name, tree, columns, work):
     out = {k: res[k] for k in ("grams", "print_time_s", "filament_mm3", "slice_seconds")}
     out["cpu_s"] = cpu
     out["gcode"] = gcode_stats.parse(os.path.join(out_dir, "out.gcode"))
+    if key in PRINTED_BODIES_ROUTES:
+        bed = json.load(open(PROFILE))["common"]["bed_mm"]
+        stem = os.path.join(tree["dir"], name)
+        out["printed_bodies"] = printed_bodies.measure(os.path.join(out_dir, "out.gcode"), stem + ".supports.stl",
+                                                       stem + ".model.stl", float(bed[0]), float(bed[1]))
     # Keep the command, settings and logs; drop the bulky G-code and meshes.
     for f in ("out.gcode", "merged.stl", "support_mesh.stl"):
         try:
@@ -190,6 +201,9 @@ def derive(m):
         if key in OURS:
             mesh = m["gen"][OURS[key]].get("support_volume_mm3")
             row["sliced_over_mesh"] = ratio(row["support_mm3"], mesh)
+            if "printed_bodies" in r:
+                row["dropped_body_layers"] = r["printed_bodies"]["dropped"]
+                row["body_layers"] = r["printed_bodies"]["body_layers"]
             if key in SUPPORT_SECTION_ROUTES:
                 row["support_section_over_mesh"] = ratio(g["support_extruded_mm3"], mesh)
         d[key] = row
@@ -205,6 +219,7 @@ def derive(m):
         t["cura_mesh_filament_vs_better_cura"] = ratio(d["cura_ours_mesh"]["support_mm3"],
                                                        best(["cura_normal", "cura_tree"], "support_mm3"))
         t["cura_mesh_sliced_over_mesh"] = d["cura_ours_mesh"].get("sliced_over_mesh")
+        t["cura_mesh_dropped_body_layers"] = d["cura_ours_mesh"].get("dropped_body_layers")
     if "cura_ours_model" in d and "cura_ours_mesh" in d:
         t["cura_mesh_time_vs_ours_as_model"] = ratio(d["cura_ours_mesh"]["support_min"],
                                                      d["cura_ours_model"]["support_min"])
@@ -215,6 +230,7 @@ def derive(m):
         t["prusa_3mf_time_vs_snug"] = ratio(d["prusa_ours_3mf"]["support_min"], d["prusa_snug"]["support_min"])
         t["prusa_3mf_filament_vs_snug"] = ratio(d["prusa_ours_3mf"]["support_mm3"], d["prusa_snug"]["support_mm3"])
         t["prusa_3mf_sliced_over_mesh"] = d["prusa_ours_3mf"].get("sliced_over_mesh")
+        t["prusa_3mf_dropped_body_layers"] = d["prusa_ours_3mf"].get("dropped_body_layers")
     gen_cpu = m["gen"]["tree"].get("cpu_s")
     tree_cpu, none_cpu = s.get("cura_tree", {}).get("cpu_s"), s.get("cura_none", {}).get("cpu_s")
     if gen_cpu and tree_cpu is not None and none_cpu is not None:
@@ -251,7 +267,9 @@ def report_md(data):
          "and run: grams, minutes, retractions, travel (m). *Islands*: support islands summed over layers (a new "
          "island after > 1 mm of travel inside support sections; for routes that print our supports as model "
          "geometry: all islands − the bare model's). *Sliced/mesh*: support filament the slicer printed over the "
-         "support mesh volume (our routes).\n"]
+         "support mesh volume (our routes). *Body layers dropped*: cross-sections of our bodies (each body cut "
+         "at the middle of every layer it spans) with no extrusion inside that are not part of a joint, of all "
+         "(slicers/printed_bodies.py): struts the slicer left out.\n"]
     names = {"cura_normal": "Cura normal", "cura_tree": "Cura tree", "cura_ours_model": "ours as model",
              "cura_ours_mesh": "ours as support mesh", "cura_columns_mesh": "our columns as support mesh",
              "prusa_grid": "Prusa grid", "prusa_snug": "Prusa snug", "prusa_ours_3mf": "ours from our 3MF",
@@ -259,8 +277,8 @@ def report_md(data):
     for slicer, title in (("cura", "CuraEngine 4.13"), ("prusa", "PrusaSlicer 2.5")):
         L.append(f"\n## {title}\n")
         L.append("| model | route | support g | support min | retractions | travel m | islands | max/layer | "
-                 "sliced/mesh | support sections/mesh |")
-        L.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+                 "sliced/mesh | support sections/mesh | body layers dropped |")
+        L.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
         for name, m in data["models"].items():
             for key, row in m.get("derived", {}).items():
                 if ROUTES[key][0] != slicer:
@@ -268,10 +286,12 @@ def report_md(data):
                 L.append(f"| {name} | {names[key]} | {row['support_g']:.2f} | {row['support_min']:.0f} | "
                          f"{row['retractions']} | {row['travel_m']:.1f} | {row['support_islands']} | "
                          f"{fmt(row['support_islands_max_per_layer'], '{}')} | {fmt(row.get('sliced_over_mesh'))} | "
-                         f"{fmt(row.get('support_section_over_mesh'))} |")
+                         f"{fmt(row.get('support_section_over_mesh'))} | "
+                         f"{fmt(row.get('dropped_body_layers'), '{}')}"
+                         f"{' of ' + str(row['body_layers']) if 'body_layers' in row else ''} |")
             for key, r in m["slices"].items():
                 if ROUTES[key][0] == slicer and "error" in r:
-                    L.append(f"| {name} | {key} | failed: {r['error'][-200:].replace(chr(10), ' ')} |||||||| |")
+                    L.append(f"| {name} | {key} | failed: {r['error'][-200:].replace(chr(10), ' ')} ||||||||| |")
     L.append("\n## Against the targets (ratios of support-only numbers, same slicer, same run)\n")
     L.append("| model | coverage | " + " | ".join(k for k, _, _ in TARGETS) + " |")
     L.append("|---|---:|" + "---:|" * len(TARGETS))
@@ -301,7 +321,8 @@ def report_md(data):
         L.append(f"| {name} | {g.get('triangles', '–')} | {fmt(g.get('cpu_s'))} | {fmt(over, '{:.1f}')} | "
                  f"{fmt(m.get('targets', {}).get('generation_speedup_vs_cura_tree'), '{:.1f}×')} | "
                  f"{mb('.prusa.3mf')} | {mb('.3mf')} | {mb('.supported.stl')} |")
-    extra = ["cura_mesh_time_vs_ours_as_model", "prusa_3mf_time_vs_ours_as_model", "cura_mesh_filament_vs_columns_mesh"]
+    extra = ["cura_mesh_time_vs_ours_as_model", "prusa_3mf_time_vs_ours_as_model", "cura_mesh_filament_vs_columns_mesh",
+             "cura_mesh_dropped_body_layers", "prusa_3mf_dropped_body_layers"]
     L.append("\nOther ratios (median, worst): " + "; ".join(
         f"{k} {fmt(s['median'].get(k))}, {fmt(s['worst'].get(k))}" for k in extra) + ".\n")
     return "\n".join(L) + "\n"
@@ -376,7 +397,9 @@ def summarize(data):
     med, worst, met, n = {}, {}, {}, {}
     keys = [(k, d) for k, _, d in TARGETS] + [("cura_mesh_time_vs_ours_as_model", "max"),
                                                ("prusa_3mf_time_vs_ours_as_model", "max"),
-                                               ("cura_mesh_filament_vs_columns_mesh", "max")]
+                                               ("cura_mesh_filament_vs_columns_mesh", "max"),
+                                               ("cura_mesh_dropped_body_layers", "max"),
+                                               ("prusa_3mf_dropped_body_layers", "max")]
     limits = {k: v for k, v, _ in TARGETS}
     for k, d in keys:
         vals = [m["targets"][k] for m in data["models"].values() if m.get("targets", {}).get(k) is not None]
