@@ -44,10 +44,19 @@ bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec
     // A strut onto the model ends a tip's length above it: near that end the balls shrink so they
     // stay clear of the contact itself (they still catch a bump between the edges).
     double end_room = onto_model ? 0.9 * std::sqrt(model.squared_distance(b)) : INFINITY;
+    // The distance to the model changes no faster than the point moves: a point whose ball the
+    // last measured distance already keeps clear (by more than a rounding margin) needs no query.
+    // Same answer as asking at every point; far from the model most points are skipped.
+    double known = -INFINITY;
+    Vec3 known_at = a;
     for (int i = 0; i <= steps; ++i) {
         double t = double(i) / steps;
         double r = std::min((0.5 * (wa + (wb - wa) * t)) * std::sqrt(2.0), (1 - t) * len + end_room);
-        if (model.squared_distance(a + (b - a) * t) < r * r) return false;
+        const Vec3 q = a + (b - a) * t;
+        if (known - distance(q, known_at) >= r + kTreeTuning.distance_bound_margin) continue;
+        const double d2 = model.squared_distance(q);
+        if (d2 < r * r) return false;
+        known = std::sqrt(d2), known_at = q;
     }
     return true;
 }

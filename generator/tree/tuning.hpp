@@ -34,6 +34,10 @@ struct TreeTuning {
     // A tip can stand on a face sloping at most this much (degrees from horizontal); steeper, it
     // would slide off and dig into the wall.
     double stand_on_slope_deg = 45;
+    // The ball test along a strut skips a point whose ball a distance measured nearby already
+    // keeps clear by more than this (mm): far above the rounding of a square root at model
+    // scale, so skipping never changes the answer.
+    double distance_bound_margin = 1e-9;
 
     // ---- merge candidates
     // Partners kept per node: the six with the least island span. More rarely changes the pick
