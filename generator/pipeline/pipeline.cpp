@@ -109,7 +109,8 @@ Supports build_supports(const ModelQuery& q, const std::vector<Sample>& samples,
 }
 
 SupportTree grow_cheaper_tree(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p) {
-    SupportTree best = grow_tree(q, samples, p);
+    const SupportTree hung = hang_leaves(q, samples, p);  // the same for every way of growing
+    SupportTree best = grow_tree(q, hung, p);
     if (p.strategy != Strategy::tree) return best;
     auto seconds = [&](const SupportTree& t) {
         const SizedTree sized = size_struts(t, p);
@@ -118,7 +119,7 @@ SupportTree grow_cheaper_tree(const ModelQuery& q, const std::vector<Sample>& sa
     const TreeStats plain = best.stats;
     double best_seconds = seconds(best);
     for (const GrowOptions& way : {GrowOptions{.lean_merging_leaves = true}, GrowOptions{.pair_leaves_first = true}}) {
-        SupportTree t = grow_tree(q, samples, p, way);
+        SupportTree t = grow_tree(q, hung, p, way);
         // A tree that gives up more samples is cheaper to print for that alone: never a saving.
         if (t.stats.dropped > plain.dropped || t.stats.dropped_branches > plain.dropped_branches) continue;
         if (const double s = seconds(t); s < best_seconds) best = std::move(t), best_seconds = s;

@@ -33,8 +33,18 @@ public:
         return std::move(t_);
     }
 
-    SupportTree run(const std::vector<Sample>& samples) {
-        hang_leaves(samples);
+    // Grows from leaves hung by hang_only for the same model and parameters: what the sweep
+    // would have hung itself, node for node, so the tree is the same as grown from the samples.
+    SupportTree run(SupportTree hung) {
+        std::vector<int> leaves;
+        for (const Node& n : hung.nodes) {
+            const int id = add_node(n.p, n.kind, n.contact, p_.d_min);
+            t_.nodes[id] = n;
+            if (n.kind == NodeKind::Leaf) leaves.push_back(id);
+        }
+        t_.pillars = std::move(hung.pillars);
+        t_.stats = hung.stats;
+        start(leaves);
         while (!heap_.empty()) {
             auto [z, neg_id] = heap_.top();
             heap_.pop();
@@ -119,9 +129,9 @@ private:
     double top_width(int from, const Vec3& to) const { return widths(from, to).top; }
     double bottom_width(int from, const Vec3& to) const { return widths(from, to).bottom; }
 
+    // Each sample's leaf (its tip placed), pillar, or the reason it has neither; run() starts from these.
     void hang_leaves(const std::vector<Sample>& samples) {
         const double tip = p_.gap + p_.tip_length;
-        std::vector<int> leaves;
         for (const auto& s : samples) {
             // Start just below the sample so the ray does not report the sample's own face.
             const Vec3 start = s.p - Vec3{0, 0, kTreeTuning.ray_start_below_sample};
@@ -160,12 +170,11 @@ private:
             if (stuck && free <= safe_length(p_, p_.d_min, 0) && hang_pillar(s.p) == PillarFit::Fits) continue;
             int leaf = add_node(at, stuck ? NodeKind::Dropped : NodeKind::Leaf, s.p, p_.d_min);
             t_.nodes[leaf].tip = top;
-            if (stuck) {
-                ++t_.stats.dropped;
-                continue;
-            }
-            leaves.push_back(leaf);
+            t_.stats.dropped += stuck;
         }
+    }
+    // The sweep starts from the leaves, paired first if asked.
+    void start(const std::vector<int>& leaves) {
         if (tree() && options_.pair_leaves_first) lean_tips_in_pairs(leaves);
         for (int leaf : leaves) activate(leaf);
     }
@@ -591,7 +600,11 @@ double SupportTree::total_length() const {
 
 SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
                       GrowOptions options) {
-    return Sweep(model, p, options).run(samples);
+    return grow_tree(model, hang_leaves(model, samples, p), p, options);
+}
+
+SupportTree grow_tree(const ModelQuery& model, SupportTree hung, const Params& p, GrowOptions options) {
+    return Sweep(model, p, options).run(std::move(hung));
 }
 
 SupportTree hang_leaves(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p) {

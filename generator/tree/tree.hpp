@@ -114,6 +114,9 @@ SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>&
 // and merges below them follow; the tree keeps its shape.
 SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
                       GrowOptions options = {});
+// The same, from the leaves hang_leaves hung for these samples (same model and parameters): the
+// leaves are placed once when a tree is grown several ways.
+SupportTree grow_tree(const ModelQuery& model, SupportTree hung, const Params& p, GrowOptions options = {});
 
 // The tree before it grows: each sample's leaf (its tip placed), pillar, or the reason it has
 // neither (touching, bridged, dropped), exactly as grow_tree starts from them; no struts. What

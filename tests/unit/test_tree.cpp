@@ -405,7 +405,7 @@ TEST(GrowTree, NoSamplesNoTree) {
     Params p;
     Mesh m = cs::test::box({0, 0, 0}, {5, 5, 5});
     ModelQuery q(m);
-    SupportTree t = grow_tree(q, {}, p);
+    SupportTree t = grow_tree(q, std::vector<Sample>{}, p);
     EXPECT_TRUE(t.nodes.empty());
     EXPECT_TRUE(t.struts.empty());
     EXPECT_EQ(t.total_length(), 0);
