@@ -109,8 +109,11 @@ Supports build_supports(const ModelQuery& q, const std::vector<Sample>& samples,
 }
 
 SupportTree grow_cheaper_tree(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p) {
-    const SupportTree hung = hang_leaves(q, samples, p);  // the same for every way of growing
-    SupportTree best = grow_tree(q, hung, p);
+    return grow_cheaper_tree(q, hang_leaves(q, samples, p), p);
+}
+
+SupportTree grow_cheaper_tree(const ModelQuery& q, const SupportTree& hung, const Params& p) {
+    SupportTree best = grow_tree(q, hung, p);  // the leaves are the same for every way of growing
     if (p.strategy != Strategy::tree) return best;
     auto seconds = [&](const SupportTree& t) {
         const SizedTree sized = size_struts(t, p);
@@ -306,8 +309,9 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     // Where tips and pillars stand aside from their samples, the overhang between them may be left
     // beyond reach: samples there. Judged on the hung leaves (where every tip stands is known before
     // the tree grows); new tips cover their own points, so once is enough.
+    SupportTree hung;
     auto extra = sw.time("coverage top-up", progress, [&] {
-        SupportTree hung = hang_leaves(*query, r.samples.samples, p);
+        hung = hang_leaves(*query, r.samples.samples, p);
         auto more = top_up_samples(r.model, oo, query.get(), r.samples, coverers(hung, r.samples.samples));
         std::erase_if(more, [&](const Sample& s) { return in_blocker(s.p, job.edits.blockers, p); });
         return more;
@@ -316,13 +320,16 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         r.samples.topped_up = extra.size();
         r.samples.samples.insert(r.samples.samples.end(), extra.begin(), extra.end());
         sort_top_down(r.samples.samples);
+        hung = hang_leaves(*query, r.samples.samples, p);  // the new samples' leaves, in sample order
     }
-    SupportTree grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, r.samples.samples, p); });
+    // The tree and the columns baseline start from the same leaves (hanging them does not depend
+    // on the strategy).
+    SupportTree grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, hung, p); });
     // The user's omitted struts are numbered in the final tree (the one the .scad shows).
     r.supports = sw.time("struts", progress, [&] { return finish_supports(std::move(grown), p, job.edits.omit_struts); });
     Params columns = p;
     columns.strategy = Strategy::columns;
-    r.columns = sw.time("columns baseline", progress, [&] { return build_supports(*query, r.samples.samples, columns); });
+    r.columns = sw.time("columns baseline", progress, [&] { return finish_supports(grow_tree(*query, hung, columns), columns); });
     query.reset();
     if (const auto& st = r.supports.sized.tree.stats; st.dropped)
         r.warnings.push_back(std::to_string(st.dropped) + " overhang samples lie where no strut fits" +
