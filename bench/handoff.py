@@ -66,7 +66,8 @@ SUPPORT_SECTION_ROUTES = {"cura_normal", "cura_tree", "cura_ours_mesh", "cura_co
                           "prusa_snug"}
 # Routes whose G-code is searched for our tree's bodies, layer by layer (printed_bodies.py).
 PRINTED_BODIES_ROUTES = {"cura_ours_model", "cura_ours_mesh", "prusa_ours_3mf", "prusa_ours_model"}
-PROFILE = os.path.join(HERE, "slicers", "profile.json")
+# The bed both routes centre the print on (printed_bodies.py places the G-code back by it).
+BED_MM = json.load(open(os.path.join(HERE, "slicers", "profile.json")))["common"]["bed_mm"]
 # Routes that print our mesh (sliced volume is compared with the mesh volume).
 OURS = {"cura_ours_model": "tree", "cura_ours_mesh": "tree", "cura_columns_mesh": "columns",
         "prusa_ours_3mf": "tree", "prusa_ours_model": "tree"}
@@ -157,10 +158,9 @@ def slice_route(args, key, name, tree, columns, work):
     out["cpu_s"] = cpu
     out["gcode"] = gcode_stats.parse(os.path.join(out_dir, "out.gcode"))
     if key in PRINTED_BODIES_ROUTES:
-        bed = json.load(open(PROFILE))["common"]["bed_mm"]
         stem = os.path.join(tree["dir"], name)
         out["printed_bodies"] = printed_bodies.measure(os.path.join(out_dir, "out.gcode"), stem + ".supports.stl",
-                                                       stem + ".model.stl", float(bed[0]), float(bed[1]))
+                                                       stem + ".model.stl", float(BED_MM[0]), float(BED_MM[1]))
     # Keep the command, settings and logs; drop the bulky G-code and meshes.
     for f in ("out.gcode", "merged.stl", "support_mesh.stl"):
         try:
