@@ -8,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "mesh/fill_holes.hpp"
+#include "mesh/unfold_caps.hpp"
 
 namespace cs {
 namespace {
@@ -312,6 +313,9 @@ void add_warnings(const std::string& name, RepairReport& r) {
                              " closed with a patch (" + std::to_string(r.boundary_edges - r.boundary_edges_left) +
                              " open edges); the slicers close them the same way. Look over the patched surfaces in "
                              "the .model.stl");
+    warn(r.caps_unfolded,
+         "sliver triangles folded back over their neighbour flipped flat (a scanner's fold: it would read as a "
+         "hanging edge needing support)");
     warn(r.boundary_edges_left,
          "open (boundary) edges left: holes that could not be closed; overhangs near them are still supported");
     warn(r.nonmanifold_edges, "non-manifold edges (shared by more than two triangles); carried on");
@@ -348,6 +352,7 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
         r.holes_filled = h.filled;
         r.boundary_edges_left = h.edges_left_open;
     }
+    r.caps_unfolded = unfold_caps(m);
 
     int shells = 0;
     face_components(m, shells);

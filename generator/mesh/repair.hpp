@@ -3,7 +3,8 @@
 // repair_mesh welds identical vertices, drops degenerate and duplicate triangles, orients every
 // shell consistently and outward (a shell wholly inside another follows its container: facing
 // against it, it is a cavity and kept; facing like it, a solid inside a solid, and dropped), closes
-// holes (fill_holes.hpp), and counts what it cannot fix (holes it could not close, non-manifold
+// holes (fill_holes.hpp), unfolds sliver triangles folded back over a neighbour (unfold_caps.hpp),
+// and counts what it cannot fix (holes it could not close, non-manifold
 // edges). Every change is reported as a warning; only a mesh with nothing printable left is an
 // InputError.
 #pragma once
@@ -24,6 +25,7 @@ struct RepairReport {
     size_t boundary_edges = 0;        // edges of holes, as found
     size_t holes_filled = 0;          // holes closed with a patch (fill_holes)
     size_t boundary_edges_left = 0;   // edges of holes that could not be closed
+    size_t caps_unfolded = 0;         // sliver triangles folded back over a neighbour, flipped flat (unfold_caps)
     size_t nonmanifold_edges = 0;     // edges shared by more than two triangles
     size_t inner_shells_removed = 0;  // solids wholly inside another solid
     size_t shells = 0;

@@ -122,6 +122,7 @@ std::string report_json(const Result& r, const Job& job) {
                     {"boundary_edges", r.repair.boundary_edges},
                     {"holes_filled", r.repair.holes_filled},
                     {"boundary_edges_left", r.repair.boundary_edges_left},
+                    {"caps_unfolded", r.repair.caps_unfolded},
                     {"nonmanifold_edges", r.repair.nonmanifold_edges},
                     {"self_intersecting_pairs", r.self_intersections}}}};
     if (is_scad_input(job.input)) j["input"]["openscad_defines"] = job.defines;

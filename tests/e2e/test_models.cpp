@@ -60,9 +60,10 @@ Generated generate(const std::string& input, double scale, const std::string& ou
 // ceiling, measured: the generator may only get better (lower it when it does); everything else
 // the judge asks must hold outright. Since no strut or tip is built nearer the model than the z
 // gap (a leaf that finds no such way down is given up, and counted in the dropped samples), no
-// model has a fused or penetrating solid. Two places stay beyond reach, each where no tip of the
-// default width fits under the overhang with the gap: nefertiti's crevice behind the headdress
-// (3 points) and the bird's chosen pose (4 points, 0.08 mm beyond reach). With
+// model has a fused or penetrating solid. One place stays beyond reach: the bird's chosen pose
+// (4 points, 0.08 mm beyond reach), where no tip of the default width fits under the overhang
+// with the gap. (nefertiti's 3 points behind the headdress were a scanner's folded sliver, a
+// hanging keel no tip fits under; repair now unfolds it, mesh/unfold_caps.hpp.) With
 // --buildplate-only a dead end sends its leaves down again one by one, so the dropped branches
 // counted there are single leaves that found no way to the bed (menger: 363 of 4240 samples).
 struct KnownShortfall {
@@ -83,7 +84,7 @@ KnownShortfall known_shortfall(const std::string& file, bool buildplate_only) {
         {"armadillo.stl", {{0, 0, 3, 3, 0}, {0, 0, 1, 1, 0}}},
         {"beast.stl", {{0, 0, 3, 0, 0}, {0, 0, 3, 0, 0}}},
         {"stanford_bunny.stl", {{0, 0, 1, 0, 0}, {0, 0, 1, 0, 0}}},
-        {"nefertiti.stl", {{0, 0, 4, 1, 3}, {0, 0, 4, 1, 0}}},
+        {"nefertiti.stl", {{0, 0, 4, 1, 0}, {0, 0, 4, 1, 0}}},
         {"igea.stl", {{0, 0, 1, 1, 0}, {0, 0, 1, 1, 0}}},
         {"example:tree", {{0, 0, 1, 0, 0}, {}}},
         {"auto:tree", {{0, 0, 1, 0, 0}, {}}},

@@ -8,6 +8,7 @@
 #include "check/check.hpp"
 #include "core/errors.hpp"
 #include "mesh/repair.hpp"
+#include "mesh/unfold_caps.hpp"
 #include "support.hpp"
 
 using namespace cs;
@@ -60,6 +61,52 @@ std::vector<double> edge_lengths(const Mesh& m) {
     for (const auto& f : m.faces)
         for (int k = 0; k < 3; ++k) l.push_back(distance(m.vertices[f[k]], m.vertices[f[(k + 1) % 3]]));
     return l;
+}
+
+// A 10 mm cube whose top is a, x, b, y (counter-clockwise from above) with a vertex c near the
+// diagonal a-b: the top triangles are (a, x, b), (a, c, y), (c, b, y) and the cap (a, b, c). With
+// c on x's side of the diagonal (`folded`), the cap faces down, folded back over (a, x, b): a
+// scanner's fold. On y's side it is an ordinary sliver lying flat in the top.
+Mesh cube_with_cap_on_top(bool folded) {
+    Mesh m = box({0, 0, 0}, {10, 10, 10});
+    std::vector<Triangle> kept;
+    for (const auto& f : m.faces)
+        if (!(m.vertices[f[0]].z == 10 && m.vertices[f[1]].z == 10 && m.vertices[f[2]].z == 10)) kept.push_back(f);
+    m.faces = kept;
+    auto index_of = [&](Vec3 p) {
+        for (std::uint32_t i = 0; i < m.vertices.size(); ++i)
+            if (m.vertices[i] == p) return i;
+        ADD_FAILURE() << "no cube corner at " << p.x << " " << p.y << " " << p.z;
+        return std::uint32_t{0};
+    };
+    const std::uint32_t a = index_of({0, 0, 10}), x = index_of({10, 0, 10}), b = index_of({10, 10, 10}),
+                        y = index_of({0, 10, 10});
+    const auto c = static_cast<std::uint32_t>(m.vertices.size());
+    m.vertices.push_back({5, folded ? 4.8 : 5.2, 10});
+    m.faces.insert(m.faces.end(), {{a, x, b}, {a, b, c}, {a, c, y}, {c, b, y}});
+    return m;
+}
+
+// A 10 mm cube whose top carries a sliver along its front edge a-b: the cap (a, b, c) with c
+// 0.3 mm in from the edge (apex 173 degrees), facing up, at 90 degrees to the front face across.
+Mesh cube_with_sliver_along_an_edge() {
+    Mesh m = box({0, 0, 0}, {10, 10, 10});
+    std::vector<Triangle> kept;
+    for (const auto& f : m.faces)
+        if (!(m.vertices[f[0]].z == 10 && m.vertices[f[1]].z == 10 && m.vertices[f[2]].z == 10)) kept.push_back(f);
+    m.faces = kept;
+    auto index_of = [&](Vec3 p) {
+        for (std::uint32_t i = 0; i < m.vertices.size(); ++i)
+            if (m.vertices[i] == p) return i;
+        ADD_FAILURE() << "no cube corner at " << p.x << " " << p.y << " " << p.z;
+        return std::uint32_t{0};
+    };
+    const std::uint32_t a = index_of({0, 0, 10}), b = index_of({10, 0, 10}), e = index_of({10, 10, 10}),
+                        f = index_of({0, 10, 10});
+    const auto c = static_cast<std::uint32_t>(m.vertices.size());
+    m.vertices.push_back({5, 0.3, 10});
+    m.faces.insert(m.faces.end(), {{a, b, c}, {c, b, e}, {c, e, f}, {a, c, f}});
+    return m;
 }
 
 }  // namespace
@@ -340,6 +387,54 @@ TEST(Repair, NonManifoldEdgeIsCountedAndCarriedOn) {
     EXPECT_EQ(r.boundary_edges, 0u);
     EXPECT_NEAR(signed_volume(out), 2000, 1e-9);
     EXPECT_TRUE(has_warning(r, "non-manifold"));
+}
+
+TEST(Repair, AFoldedCapIsUnfoldedAndTheTopFacesUpAgain) {
+    const Mesh m = cube_with_cap_on_top(true);
+    ASSERT_TRUE(is_closed_and_consistent(m));
+    ASSERT_NEAR(signed_volume(m), 1000, 1e-9);
+    int down_on_top = 0;
+    for (const auto& f : m.faces)
+        if (m.vertices[f[0]].z == 10 && m.vertices[f[1]].z == 10 && m.vertices[f[2]].z == 10)
+            down_on_top += face_normal_unnormalized(m, f).z < 0;
+    ASSERT_EQ(down_on_top, 1);  // the fold is there to begin with
+
+    Mesh u = m;
+    EXPECT_EQ(unfold_caps(u), 1u);
+    EXPECT_EQ(u.vertices, m.vertices);  // no vertex added or moved
+    EXPECT_EQ(u.faces.size(), m.faces.size());
+    EXPECT_TRUE(is_closed_and_consistent(u));
+    EXPECT_NEAR(signed_volume(u), 1000, 1e-9);
+    for (const auto& f : u.faces)
+        if (u.vertices[f[0]].z == 10 && u.vertices[f[1]].z == 10 && u.vertices[f[2]].z == 10)
+            EXPECT_GT(face_normal_unnormalized(u, f).z, 0);
+
+    RepairReport r;
+    const Mesh out = repair(m, r);
+    EXPECT_EQ(r.caps_unfolded, 1u);
+    EXPECT_TRUE(has_warning(r, "1 sliver triangle"));
+    EXPECT_TRUE(is_closed_and_consistent(out));
+}
+
+TEST(Repair, ACapLyingFlatASliverAlongAnEdgeAndABoxAreLeftAlone) {
+    Mesh flat = cube_with_cap_on_top(false);
+    ASSERT_TRUE(is_closed_and_consistent(flat));
+    const Mesh before = flat;
+    EXPECT_EQ(unfold_caps(flat), 0u);
+    EXPECT_EQ(flat.faces, before.faces);
+
+    // A sharp edge of the shape is not a fold: flipping its sliver would chamfer the edge.
+    Mesh edge = cube_with_sliver_along_an_edge();
+    ASSERT_TRUE(is_closed_and_consistent(edge));
+    const Mesh edge_before = edge;
+    EXPECT_EQ(unfold_caps(edge), 0u);
+    EXPECT_EQ(edge.faces, edge_before.faces);
+    EXPECT_NEAR(signed_volume(edge), 1000, 1e-9);
+
+    RepairReport r;
+    repair(box({0, 0, 0}, {10, 10, 10}), r);
+    EXPECT_EQ(r.caps_unfolded, 0u);
+    EXPECT_FALSE(has_warning(r, "sliver"));
 }
 
 TEST(Repair, IsDeterministic) {

@@ -1,0 +1,93 @@
+#include "mesh/unfold_caps.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace cs {
+namespace {
+
+// A cap's apex angle is at least this: its apex lies within tan(10 deg) / 2 of its long edge's
+// length from that edge.
+constexpr double kCapApexDeg = 160;
+// The cap folds back over the triangle across: their normals more than 120 degrees apart, the two
+// faces within 60 degrees of lying flat on each other (nefertiti's fold behind the headdress: 153
+// degrees). A sharp edge of the shape is not a fold: CAD meshes carry slivers along their
+// 90-degree edges (bracket, slots, extruder_idler) and along a thread's crest (normals 93-105
+// degrees apart); flipping those would chamfer the edge by up to the sliver's height (2 mm on the
+// bracket).
+constexpr double kFoldedCos = -0.5;
+// Both new triangles must face within 60 degrees of the triangle across.
+constexpr double kAgreeCos = 0.5;
+// Flips that open other folds are retried; a few passes find every cap that can be unfolded.
+constexpr int kPasses = 4;
+
+Vec3 unit_normal(const Mesh& m, const Triangle& t) {
+    const Vec3 n = face_normal_unnormalized(m, t);
+    const double len = norm(n);
+    return len > 0 ? n / len : Vec3{};
+}
+
+double angle_deg(const Vec3& at, const Vec3& p, const Vec3& q) {
+    const Vec3 u = p - at, v = q - at;
+    const double c = dot(u, v) / (norm(u) * norm(v));
+    return std::acos(std::clamp(c, -1.0, 1.0)) * 180 / 3.14159265358979323846;
+}
+
+bool has_cap(const Mesh& m, const Triangle& t) {
+    for (int k = 0; k < 3; ++k)
+        if (angle_deg(m.vertices[t[(k + 2) % 3]], m.vertices[t[k]], m.vertices[t[(k + 1) % 3]]) >= kCapApexDeg) return true;
+    return false;
+}
+
+}  // namespace
+
+size_t unfold_caps(Mesh& m) {
+    // Most meshes have no cap at all: then no edge map is built.
+    if (std::none_of(m.faces.begin(), m.faces.end(), [&](const Triangle& t) { return has_cap(m, t); })) return 0;
+    size_t unfolded = 0;
+    for (int pass = 0; pass < kPasses; ++pass) {
+        std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> faces_of_edge;
+        for (std::uint32_t f = 0; f < m.faces.size(); ++f)
+            for (int k = 0; k < 3; ++k) faces_of_edge[edge_key(m.faces[f][k], m.faces[f][(k + 1) % 3])].push_back(f);
+        std::vector<char> touched(m.faces.size(), 0);
+        size_t this_pass = 0;
+        for (std::uint32_t f = 0; f < m.faces.size(); ++f) {
+            if (touched[f]) continue;
+            const Triangle t = m.faces[f];
+            for (int k = 0; k < 3; ++k) {
+                // The cap (a, b, c): apex c opposite the edge a -> b.
+                const std::uint32_t a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+                if (angle_deg(m.vertices[c], m.vertices[a], m.vertices[b]) < kCapApexDeg) continue;
+                const auto& across = faces_of_edge[edge_key(a, b)];
+                if (across.size() != 2) break;  // an open or non-manifold edge: leave it
+                const std::uint32_t g = across[0] == f ? across[1] : across[0];
+                if (touched[g]) break;
+                const Triangle& u = m.faces[g];
+                const std::uint32_t d = u[0] != a && u[0] != b ? u[0] : u[1] != a && u[1] != b ? u[1] : u[2];
+                if (d == c || faces_of_edge.count(edge_key(c, d))) break;
+                const Vec3 n_across = unit_normal(m, u);
+                if (dot(unit_normal(m, t), n_across) > kFoldedCos) break;  // not folded
+                const Triangle t2{c, a, d}, u2{d, b, c};
+                if (dot(unit_normal(m, t2), n_across) < kAgreeCos || dot(unit_normal(m, u2), n_across) < kAgreeCos) break;
+                m.faces[f] = t2;
+                m.faces[g] = u2;
+                // The edges' faces as they are now: a-b is gone, c-d is new, a-d is f's, b-c is g's.
+                faces_of_edge.erase(edge_key(a, b));
+                faces_of_edge[edge_key(c, d)] = {f, g};
+                std::replace(faces_of_edge[edge_key(a, d)].begin(), faces_of_edge[edge_key(a, d)].end(), g, f);
+                std::replace(faces_of_edge[edge_key(b, c)].begin(), faces_of_edge[edge_key(b, c)].end(), f, g);
+                touched[f] = touched[g] = 1;
+                ++this_pass;
+                break;
+            }
+        }
+        unfolded += this_pass;
+        if (this_pass == 0) break;
+    }
+    return unfolded;
+}
+
+}  // namespace cs
