@@ -141,6 +141,11 @@ def inputs_of(what, name, tree, columns):
     }[what]
 
 
+def removed_note(n):
+    """Body layers in first layers CuraEngine removed because the model's slice there was empty."""
+    return f" (+{n} in the empty first layer the slicer removed)" if n else ""
+
+
 def slice_route(args, key, name, tree, columns, work):
     slicer, support, what = ROUTES[key]
     ins = inputs_of(what, name, tree, columns)
@@ -160,7 +165,8 @@ def slice_route(args, key, name, tree, columns, work):
     if key in PRINTED_BODIES_ROUTES:
         stem = os.path.join(tree["dir"], name)
         out["printed_bodies"] = printed_bodies.measure(os.path.join(out_dir, "out.gcode"), stem + ".supports.stl",
-                                                       stem + ".model.stl", float(BED_MM[0]), float(BED_MM[1]))
+                                                       stem + ".model.stl", float(BED_MM[0]), float(BED_MM[1]),
+                                                       res.get("removed_empty_first_layers", 0))
     # Keep the command, settings and logs; drop the bulky G-code and meshes.
     for f in ("out.gcode", "merged.stl", "support_mesh.stl"):
         try:
@@ -204,6 +210,7 @@ def derive(m):
             if "printed_bodies" in r:
                 row["dropped_body_layers"] = r["printed_bodies"]["dropped"]
                 row["body_layers"] = r["printed_bodies"]["body_layers"]
+                row["body_layers_removed_with_first_layers"] = r["printed_bodies"].get("in_removed_first_layers", 0)
             if key in SUPPORT_SECTION_ROUTES:
                 row["support_section_over_mesh"] = ratio(g["support_extruded_mm3"], mesh)
         d[key] = row
@@ -288,7 +295,8 @@ def report_md(data):
                          f"{fmt(row['support_islands_max_per_layer'], '{}')} | {fmt(row.get('sliced_over_mesh'))} | "
                          f"{fmt(row.get('support_section_over_mesh'))} | "
                          f"{fmt(row.get('dropped_body_layers'), '{}')}"
-                         f"{' of ' + str(row['body_layers']) if 'body_layers' in row else ''} |")
+                         f"{' of ' + str(row['body_layers']) if 'body_layers' in row else ''}"
+                         f"{removed_note(row.get('body_layers_removed_with_first_layers'))} |")
             for key, r in m["slices"].items():
                 if ROUTES[key][0] == slicer and "error" in r:
                     L.append(f"| {name} | {key} | failed: {r['error'][-200:].replace(chr(10), ' ')} ||||||||| |")

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Which of our support bodies a slicer leaves out, layer by layer.
 
-usage: printed_bodies.py out.gcode supports.stl model.stl BED_X BED_Y   (prints one JSON object)
+usage: printed_bodies.py out.gcode supports.stl model.stl BED_X BED_Y [REMOVED_FIRST_LAYERS]
+       (prints one JSON object)
 
 The sliced-volume ratio (filament / mesh volume) mixes two things: how much plastic a slicer puts
 in a line (PrusaSlicer's rounded bead is 0.91 of width x height for a 0.5 mm wall) and whether a
@@ -16,6 +17,12 @@ Placement: both bench routes put the model and supports, together, with the cent
 bounding box in XY on the bed's centre (slice.py's place_groups for Cura; PrusaSlicer centres a
 3MF object the same way), so G-code XY = mesh XY + (bed centre - that box's centre). The layer
 height is slice.py's (0.2 mm, first layer too).
+
+Removed first layers: when the model's first layer slices empty, CuraEngine's
+remove_empty_first_layers drops it (and a support mesh's first layer with it) and prints every
+later layer one layer lower; slice.py reports how many ("removed_empty_first_layers"). The G-code
+layer at height z then holds the meshes' layer at z + that many layers, and the body layers in the
+removed layers are counted apart ("in_removed_first_layers"), not as dropped.
 """
 import collections
 import json
@@ -111,7 +118,7 @@ def extrusions_by_layer(path):
     return layers
 
 
-def measure(gcode, supports_stl, model_stl, bed_x, bed_y):
+def measure(gcode, supports_stl, model_stl, bed_x, bed_y, removed_first_layers=0):
     sup = S.read_stl(supports_stl)
     everything = sup + S.read_stl(model_stl)
     xs = [v[0] for t in everything for v in t]
@@ -121,10 +128,12 @@ def measure(gcode, supports_stl, model_stl, bed_x, bed_y):
     bodies = shells(sup)
     spans = [(min(v[2] for t in b for v in t), max(v[2] for t in b for v in t)) for b in bodies]
     layers = extrusions_by_layer(gcode)
+    shift = removed_first_layers * LAYER_MM
+    removed = sum(1 for k in range(removed_first_layers) for lo, hi in spans if lo < (k + 0.5) * LAYER_MM < hi)
     total = printed = joined = 0
     dropped = []
     for top, pts in sorted(layers.items()):
-        mid = top - LAYER_MM / 2
+        mid = top - LAYER_MM / 2 + shift
         grid = collections.defaultdict(list)
         for p in pts:
             grid[(math.floor(p[0] / CELL_MM), math.floor(p[1] / CELL_MM))].append(p)
@@ -163,11 +172,13 @@ def measure(gcode, supports_stl, model_stl, bed_x, bed_y):
                             "width": round(max(x1 - x0, y1 - y0), 2)})
     return {"body_layers": total, "printed": printed, "in_joints_unprinted": joined, "dropped": len(dropped),
             "dropped_share": len(dropped) / total if total else 0.0, "dropped_examples": dropped[:5],
+            "removed_first_layers": removed_first_layers, "in_removed_first_layers": removed,
             "offset_xy": [round(dx, 3), round(dy, 3)]}
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 6:
+    if len(sys.argv) not in (6, 7):
         print(__doc__.split("\n\n")[1], file=sys.stderr)
         sys.exit(2)
-    print(json.dumps(measure(sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4]), float(sys.argv[5])), indent=1))
+    print(json.dumps(measure(sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4]), float(sys.argv[5]),
+                             int(sys.argv[6]) if len(sys.argv) == 7 else 0), indent=1))

@@ -232,6 +232,10 @@ def slice_cura(stl, support, profile, work, timeout, extra=None, support_mesh_st
         raise SliceError("CuraEngine wrote no g-code; stderr tail:\n" + tail(err))
     mm3 = float(m_v[-1])
     diameter = float(ext["material_diameter"])
+    # remove_empty_first_layers: when the model's first layer slices empty (a scan standing on a
+    # few vertices), CuraEngine drops it, support meshes' first layer with it, and prints every
+    # later layer one layer lower. printed_bodies.py needs to know to line the G-code up again.
+    m_removed = re.findall(r"Removing (\d+) layers because they are empty", err)
     density = float(profile["common"]["filament_density_g_cm3"]) * 1e-3  # g/mm3
     return {
         "grams": mm3 * density,
@@ -239,6 +243,7 @@ def slice_cura(stl, support, profile, work, timeout, extra=None, support_mesh_st
         "filament_mm3": mm3,
         "filament_mm": mm3 / (math.pi * diameter * diameter / 4.0),
         "slice_seconds": wall,
+        "removed_empty_first_layers": int(m_removed[-1]) if m_removed else 0,
     }
 
 
