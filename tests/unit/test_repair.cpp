@@ -1,6 +1,7 @@
 // mesh/repair: welding, dropping bad triangles, orientation, shells, placement on the bed.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -63,52 +64,52 @@ std::vector<double> edge_lengths(const Mesh& m) {
     return l;
 }
 
+// A 10 mm cube without its top, the corners of the top (counter-clockwise from above, from the
+// origin's) and one new vertex `c` at `apex` in the top's plane: the caller closes the top.
+struct OpenTopCube {
+    Mesh mesh;
+    std::uint32_t corner[4];
+    std::uint32_t c;
+};
+
+OpenTopCube cube_without_top(Vec3 apex) {
+    OpenTopCube o{box({0, 0, 0}, {10, 10, 10}), {}, 0};
+    Mesh& m = o.mesh;
+    std::erase_if(m.faces, [&](const Triangle& f) {
+        return m.vertices[f[0]].z == 10 && m.vertices[f[1]].z == 10 && m.vertices[f[2]].z == 10;
+    });
+    const Vec3 corners[4] = {{0, 0, 10}, {10, 0, 10}, {10, 10, 10}, {0, 10, 10}};
+    for (int k = 0; k < 4; ++k) {
+        auto it = std::find(m.vertices.begin(), m.vertices.end(), corners[k]);
+        EXPECT_NE(it, m.vertices.end()) << "no cube corner " << k;
+        o.corner[k] = static_cast<std::uint32_t>(it - m.vertices.begin());
+    }
+    o.c = static_cast<std::uint32_t>(m.vertices.size());
+    m.vertices.push_back(apex);
+    return o;
+}
+
 // A 10 mm cube whose top is a, x, b, y (counter-clockwise from above) with a vertex c near the
 // diagonal a-b: the top triangles are (a, x, b), (a, c, y), (c, b, y) and the cap (a, b, c). With
 // c on x's side of the diagonal (`folded`), the cap faces down, folded back over (a, x, b): a
 // scanner's fold. On y's side it is an ordinary sliver lying flat in the top.
 Mesh cube_with_cap_on_top(bool folded) {
-    Mesh m = box({0, 0, 0}, {10, 10, 10});
-    std::vector<Triangle> kept;
-    for (const auto& f : m.faces)
-        if (!(m.vertices[f[0]].z == 10 && m.vertices[f[1]].z == 10 && m.vertices[f[2]].z == 10)) kept.push_back(f);
-    m.faces = kept;
-    auto index_of = [&](Vec3 p) {
-        for (std::uint32_t i = 0; i < m.vertices.size(); ++i)
-            if (m.vertices[i] == p) return i;
-        ADD_FAILURE() << "no cube corner at " << p.x << " " << p.y << " " << p.z;
-        return std::uint32_t{0};
-    };
-    const std::uint32_t a = index_of({0, 0, 10}), x = index_of({10, 0, 10}), b = index_of({10, 10, 10}),
-                        y = index_of({0, 10, 10});
-    const auto c = static_cast<std::uint32_t>(m.vertices.size());
-    m.vertices.push_back({5, folded ? 4.8 : 5.2, 10});
-    m.faces.insert(m.faces.end(), {{a, x, b}, {a, b, c}, {a, c, y}, {c, b, y}});
-    return m;
+    OpenTopCube o = cube_without_top({5, folded ? 4.8 : 5.2, 10});
+    const auto [a, x, b, y] = o.corner;
+    const std::uint32_t c = o.c;
+    o.mesh.faces.insert(o.mesh.faces.end(), {{a, x, b}, {a, b, c}, {a, c, y}, {c, b, y}});
+    return o.mesh;
 }
 
 // A 10 mm cube whose top carries a sliver along its front edge a-b: the cap (a, b, c) with c
 // 0.3 mm in from the edge (apex 173 degrees), facing up, at 90 degrees to the front face across.
 Mesh cube_with_sliver_along_an_edge() {
-    Mesh m = box({0, 0, 0}, {10, 10, 10});
-    std::vector<Triangle> kept;
-    for (const auto& f : m.faces)
-        if (!(m.vertices[f[0]].z == 10 && m.vertices[f[1]].z == 10 && m.vertices[f[2]].z == 10)) kept.push_back(f);
-    m.faces = kept;
-    auto index_of = [&](Vec3 p) {
-        for (std::uint32_t i = 0; i < m.vertices.size(); ++i)
-            if (m.vertices[i] == p) return i;
-        ADD_FAILURE() << "no cube corner at " << p.x << " " << p.y << " " << p.z;
-        return std::uint32_t{0};
-    };
-    const std::uint32_t a = index_of({0, 0, 10}), b = index_of({10, 0, 10}), e = index_of({10, 10, 10}),
-                        f = index_of({0, 10, 10});
-    const auto c = static_cast<std::uint32_t>(m.vertices.size());
-    m.vertices.push_back({5, 0.3, 10});
-    m.faces.insert(m.faces.end(), {{a, b, c}, {c, b, e}, {c, e, f}, {a, c, f}});
-    return m;
+    OpenTopCube o = cube_without_top({5, 0.3, 10});
+    const auto [a, b, e, f] = o.corner;
+    const std::uint32_t c = o.c;
+    o.mesh.faces.insert(o.mesh.faces.end(), {{a, b, c}, {c, b, e}, {c, e, f}, {a, c, f}});
+    return o.mesh;
 }
-
 }  // namespace
 
 TEST(Repair, WeldsStlSoupBox) {
