@@ -30,15 +30,16 @@ Vec3 unit_normal(const Mesh& m, const Triangle& t) {
     return len > 0 ? n / len : Vec3{};
 }
 
-double angle_deg(const Vec3& at, const Vec3& p, const Vec3& q) {
-    const Vec3 u = p - at, v = q - at;
-    const double c = dot(u, v) / (norm(u) * norm(v));
-    return std::acos(std::clamp(c, -1.0, 1.0)) * 180 / 3.14159265358979323846;
+// Is c's corner of the triangle (a, b, c) a cap's apex, c almost on the edge a-b?
+bool is_apex(const Mesh& m, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    const Vec3 u = m.vertices[a] - m.vertices[c], v = m.vertices[b] - m.vertices[c];
+    const double cos_c = dot(u, v) / (norm(u) * norm(v));
+    return rad_to_deg(std::acos(std::clamp(cos_c, -1.0, 1.0))) >= kCapApexDeg;
 }
 
 bool has_cap(const Mesh& m, const Triangle& t) {
     for (int k = 0; k < 3; ++k)
-        if (angle_deg(m.vertices[t[(k + 2) % 3]], m.vertices[t[k]], m.vertices[t[(k + 1) % 3]]) >= kCapApexDeg) return true;
+        if (is_apex(m, t[k], t[(k + 1) % 3], t[(k + 2) % 3])) return true;
     return false;
 }
 
@@ -60,7 +61,7 @@ size_t unfold_caps(Mesh& m) {
             for (int k = 0; k < 3; ++k) {
                 // The cap (a, b, c): apex c opposite the edge a -> b.
                 const std::uint32_t a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
-                if (angle_deg(m.vertices[c], m.vertices[a], m.vertices[b]) < kCapApexDeg) continue;
+                if (!is_apex(m, a, b, c)) continue;
                 const auto& across = faces_of_edge[edge_key(a, b)];
                 if (across.size() != 2) break;  // an open or non-manifold edge: leave it
                 const std::uint32_t g = across[0] == f ? across[1] : across[0];
