@@ -101,6 +101,10 @@ def main():
     ap.add_argument("--out", default=os.path.join(HERE, "results"))
     ap.add_argument("--work", default=os.path.join(HERE, "work", "prusa_bead"))
     args = ap.parse_args()
+    for tool in (args.bin, "openscad", S.PRUSA_BIN):
+        if not shutil.which(tool):
+            raise SystemExit("prusa_bead.py: %s not found (build with scripts/build.sh; scripts/install-deps.sh "
+                             "installs openscad and prusa-slicer)" % tool)
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
     with open(os.path.join(HERE, "slicers", "profile.json")) as f:
