@@ -58,6 +58,8 @@ TipEnds contact_tip(const Params& p, const Vec3& tip_bottom, const Vec3& node, d
 
 double touching_space(const Params& p) { return 2 * p.gap + p.layer_height; }
 
+double tip_side_clearance(const Params& p) { return 0.5 * p.line_width; }
+
 double contact_tolerance(const Params& p) {
     double steepest = std::tan(deg_to_rad(90 - p.critical_angle));  // slope of the steepest overhang
     return p.gap + 0.5 * p.tip_diameter * steepest + 0.05;

@@ -64,6 +64,12 @@ double joint_overlap(const Params& p);
 // on what is below it (two z gaps and a layer).
 double touching_space(const Params& p);
 
+// How far a tip's top keeps, sideways, from a wall of the model beside it in its own layer: half
+// a line width. Nearer, the tip's outer line prints against the wall's and fuses with it (and
+// CuraEngine cuts support off within its xy distance of the model); it is PrusaSlicer's default
+// xy spacing for its own supports (50 % of a line).
+double tip_side_clearance(const Params& p);
+
 // How far below the model a tip's top may sit and still count as a contact: the z gap, plus what
 // a tip's square top needs under the steepest overhang that needs support.
 double contact_tolerance(const Params& p);

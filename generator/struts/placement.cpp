@@ -51,6 +51,22 @@ std::optional<double> ceiling_drop(const ModelQuery& model, const std::array<Vec
     return drop;
 }
 
+// Does a tip's top square at `top` keep tip_side_clearance from a wall beside it (a slot's or a
+// hole's ceiling meeting its side)? Under a sloping ceiling the wider square's downhill corners
+// reach into the overhang itself: such tops fail this test wherever they go, and placement keeps
+// the nearest plain fit.
+bool keeps_clearance_beside(const ModelQuery& model, const Vec3& top, const Params& p) {
+    return square_is_clear(model, top, p.tip_diameter + 2 * tip_side_clearance(p));
+}
+
+// Is the ceiling straight above `top` one gap up (within kLevel)? A top moved off a wall must
+// still touch what its sample hangs from: beside a lowest point or under a curve the ceiling
+// rises away from the sample, and a top left at the sample's height would hang below it in air.
+bool under_its_ceiling(const ModelQuery& model, const Vec3& top, const Params& p) {
+    auto hit = model.first_hit(top, {0, 0, 1});
+    return hit && hit->distance <= p.gap + kLevel;
+}
+
 // How much lower than a gap under the sample a tip's top may sit and still count as a contact.
 double allowed_drop(const Params& p) { return contact_tolerance(p) - p.gap - 0.05; }
 
@@ -193,6 +209,7 @@ std::optional<Vec3> place_tip_top(const ModelQuery& model, const Vec3& sample, c
     // Rays start a tip's length below the gap, under the overhang.
     const double start = sample.z - p.gap - p.tip_length;
     bool ceiling = false;
+    std::optional<Vec3> nearest_fit;  // taken when no top that fits keeps the side clearance
     for (const auto& off : nearby_offsets()) {
         const Vec3 c{sample.x + off.x, sample.y + off.y, start};
         auto drop = ceiling_drop(model, square_points(c, p.tip_diameter), sample.z);
@@ -201,8 +218,12 @@ std::optional<Vec3> place_tip_top(const ModelQuery& model, const Vec3& sample, c
         Vec3 top{c.x, c.y, sample.z - p.gap - *drop};
         // A corner of the top in the model (the overhang's edge turning down beside the sample)
         // is no place for a tip.
-        if (square_is_clear(model, top, p.tip_diameter)) return top;
+        if (!square_is_clear(model, top, p.tip_diameter)) continue;
+        if (!nearest_fit) nearest_fit = top;
+        if (keeps_clearance_beside(model, top, p) && (top == *nearest_fit || under_its_ceiling(model, top, p)))
+            return top;
     }
+    if (nearest_fit) return nearest_fit;
     // Nothing above at all (a point given in open air): no gap to keep but the sample's own.
     if (!ceiling) return sample - Vec3{0, 0, p.gap};
     return std::nullopt;

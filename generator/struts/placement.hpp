@@ -3,7 +3,8 @@
 // axis alone: every corner of a tip's or pillar's top stays the z gap under the overhang above
 // it, every corner of a pillar's foot the z gap above the model below it, and no edge of the
 // solid cuts the model. When the square does not fit straight under the sample (a slope too
-// steep across it, a wall beside it), it moves up to half a millimetre aside.
+// steep across it, a wall beside it), it moves up to half a millimetre aside; a tip's top also
+// moves (as far) to keep tip_side_clearance (core/rules.hpp) from a wall beside it.
 #pragma once
 
 #include <optional>
@@ -39,6 +40,9 @@ PillarPlacement fit_pillar(const ModelQuery& model, const Vec3& sample, const Pa
 // (tip_diameter wide) would come nearer a sloping overhang than the gap. Under a curved overhang
 // (the crown of a round hole) a square straight below the sample may need more lowering than a
 // contact allows; the top then moves towards the flatter side, so its corners keep the gap.
+// Of the tops that fit, the nearest that keeps tip_side_clearance from a wall beside it in its
+// own layer, with the ceiling still a gap above it, wins (a tip against a wall fuses with it or
+// is cut off by the slicer); the nearest that fits when none does.
 // nullopt where no square near the sample keeps the gap within what a contact allows (a sample
 // on a knife edge or in a crevice narrower than a tip): a tip there would be built into the model.
 std::optional<Vec3> place_tip_top(const ModelQuery& model, const Vec3& sample, const Params& p);

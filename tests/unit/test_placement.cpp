@@ -116,6 +116,39 @@ TEST(PlaceTipTop, NoneInASlotNarrowerThanATip) {
     EXPECT_TRUE(place_tip_top(qw, {0, 0, 10}, p));
 }
 
+TEST(PlaceTipTop, MovesOffAWallBesideItToKeepTheClearance) {
+    // A ceiling at z 10 meeting a wall that goes down at x = 0.5: straight below a sample 0.5 mm
+    // from the wall, a tip's top (0.8 mm square) would stand 0.1 mm from the wall in its own
+    // layer, where a slicer fuses it with the wall's outer line or cuts it off. It moves away, no
+    // further than a top may, and keeps its gap under the ceiling.
+    Params p;
+    Mesh m = box({-5, -5, 10}, {5, 5, 12});
+    append(m, box({0.5, -5, 0}, {5, 5, 10}));
+    ModelQuery q(m);
+    const auto placed = place_tip_top(q, {0, 0, 10}, p);
+    ASSERT_TRUE(placed);
+    const Vec3 top = *placed;
+    EXPECT_LE(top.x + 0.5 * p.tip_diameter, 0.5 - tip_side_clearance(p) + 1e-9) << "keeps the clearance from the wall";
+    EXPECT_LE(horizontal_distance(top, {0, 0, 10}), 0.5 + 1e-9) << "stays near its sample";
+    EXPECT_NEAR(top.z, 10 - p.gap, 1e-9);
+    EXPECT_GE(nearest_from_corners(q, top, p.tip_diameter, 1), p.gap - 1e-9);
+}
+
+TEST(PlaceTipTop, InASlotTooNarrowForTheClearanceTheTipStillGoes) {
+    // A slot 0.9 mm wide: a tip's top fits, but nowhere with the clearance to both walls. The
+    // sample keeps its tip, straight below it, rather than going unsupported.
+    Params p;
+    Mesh m = box({-5, -5, 10}, {5, 5, 12});
+    append(m, box({-5, -5, 0}, {-0.45, 5, 10}));
+    append(m, box({0.45, -5, 0}, {5, 5, 10}));
+    ModelQuery q(m);
+    const auto placed = place_tip_top(q, {0, 0, 10}, p);
+    ASSERT_TRUE(placed);
+    EXPECT_NEAR(placed->x, 0, 1e-9);
+    EXPECT_NEAR(placed->y, 0, 1e-9);
+    EXPECT_TRUE(square_is_clear(q, *placed, p.tip_diameter));
+}
+
 TEST(ContactUnderTip, FootClearsTheModelOnASlope) {
     // A 30-degree slope rising along x and y together (the worst case for a square): the tip's
     // foot keeps air under every corner.
