@@ -39,6 +39,15 @@ Mesh stepped_slot() {
     return m;
 }
 
+// A ceiling at z 10 over walls that go down from it at x <= left and x >= right: the ceiling of a
+// slot between them (left = -INFINITY: one wall only).
+Mesh ceiling_over_walls(double left, double right) {
+    Mesh m = box({-5, -5, 10}, {5, 5, 12});
+    if (std::isfinite(left)) append(m, box({-5, -5, 0}, {left, 5, 10}));
+    append(m, box({right, -5, 0}, {5, 5, 10}));
+    return m;
+}
+
 TEST(FitPillar, FootStandsAboveTheHighestFloorUnderItsSquare) {
     Params p;
     Mesh m = stepped_slot();
@@ -103,15 +112,11 @@ TEST(PlaceTipTop, NoneInASlotNarrowerThanATip) {
     // The ceiling of a 0.5 mm slot between two walls: every square a tip's width across, near the
     // sample, has a corner in a wall. No tip is placed rather than one built into the model.
     Params p;
-    Mesh m = box({-5, -5, 10}, {5, 5, 12});
-    append(m, box({-5, -5, 0}, {-0.25, 5, 10}));
-    append(m, box({0.25, -5, 0}, {5, 5, 10}));
+    Mesh m = ceiling_over_walls(-0.25, 0.25);
     ModelQuery q(m);
     EXPECT_FALSE(place_tip_top(q, {0, 0, 10}, p));
     // A slot twice as wide as a tip takes one.
-    Mesh wide = box({-5, -5, 10}, {5, 5, 12});
-    append(wide, box({-5, -5, 0}, {-p.tip_diameter, 5, 10}));
-    append(wide, box({p.tip_diameter, -5, 0}, {5, 5, 10}));
+    Mesh wide = ceiling_over_walls(-p.tip_diameter, p.tip_diameter);
     ModelQuery qw(wide);
     EXPECT_TRUE(place_tip_top(qw, {0, 0, 10}, p));
 }
@@ -122,8 +127,7 @@ TEST(PlaceTipTop, MovesOffAWallBesideItToKeepTheClearance) {
     // layer, where a slicer fuses it with the wall's outer line or cuts it off. It moves away, no
     // further than a top may, and keeps its gap under the ceiling.
     Params p;
-    Mesh m = box({-5, -5, 10}, {5, 5, 12});
-    append(m, box({0.5, -5, 0}, {5, 5, 10}));
+    Mesh m = ceiling_over_walls(-INFINITY, 0.5);
     ModelQuery q(m);
     const auto placed = place_tip_top(q, {0, 0, 10}, p);
     ASSERT_TRUE(placed);
@@ -138,9 +142,7 @@ TEST(PlaceTipTop, InASlotTooNarrowForTheClearanceTheTipStillGoes) {
     // A slot 0.9 mm wide: a tip's top fits, but nowhere with the clearance to both walls. The
     // sample keeps its tip, straight below it, rather than going unsupported.
     Params p;
-    Mesh m = box({-5, -5, 10}, {5, 5, 12});
-    append(m, box({-5, -5, 0}, {-0.45, 5, 10}));
-    append(m, box({0.45, -5, 0}, {5, 5, 10}));
+    Mesh m = ceiling_over_walls(-0.45, 0.45);
     ModelQuery q(m);
     const auto placed = place_tip_top(q, {0, 0, 10}, p);
     ASSERT_TRUE(placed);
