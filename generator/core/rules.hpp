@@ -65,9 +65,10 @@ double joint_overlap(const Params& p);
 double touching_space(const Params& p);
 
 // How far a tip's top keeps, sideways, from a wall of the model beside it in its own layer: half
-// a line width. Nearer, the tip's outer line prints against the wall's and fuses with it (and
-// CuraEngine cuts support off within its xy distance of the model); it is PrusaSlicer's default
-// xy spacing for its own supports (50 % of a line).
+// a line width, PrusaSlicer's default xy spacing for its own supports (50 % of a line). Nearer,
+// the tip's outer line prints against the wall's and fuses with it. (CuraEngine keeps its xy
+// distance, 0.7 mm, and trims our supports there too; keeping that much would take tips further
+// from their samples than placement moves them.)
 double tip_side_clearance(const Params& p);
 
 // How far below the model a tip's top may sit and still count as a contact: the z gap, plus what

@@ -41,8 +41,8 @@ PillarPlacement fit_pillar(const ModelQuery& model, const Vec3& sample, const Pa
 // (the crown of a round hole) a square straight below the sample may need more lowering than a
 // contact allows; the top then moves towards the flatter side, so its corners keep the gap.
 // Of the tops that fit, the nearest that keeps tip_side_clearance from a wall beside it in its
-// own layer, with the ceiling still a gap above it, wins (a tip against a wall fuses with it or
-// is cut off by the slicer); the nearest that fits when none does.
+// own layer, with the ceiling still a gap above it, wins (a tip against a wall prints fused to
+// it); the nearest that fits when none does.
 // nullopt where no square near the sample keeps the gap within what a contact allows (a sample
 // on a knife edge or in a crevice narrower than a tip): a tip there would be built into the model.
 std::optional<Vec3> place_tip_top(const ModelQuery& model, const Vec3& sample, const Params& p);

@@ -124,7 +124,7 @@ TEST(PlaceTipTop, NoneInASlotNarrowerThanATip) {
 TEST(PlaceTipTop, MovesOffAWallBesideItToKeepTheClearance) {
     // A ceiling at z 10 meeting a wall that goes down at x = 0.5: straight below a sample 0.5 mm
     // from the wall, a tip's top (0.8 mm square) would stand 0.1 mm from the wall in its own
-    // layer, where a slicer fuses it with the wall's outer line or cuts it off. It moves away, no
+    // layer, where it would print fused to the wall's outer line. It moves away, no
     // further than a top may, and keeps its gap under the ceiling.
     Params p;
     Mesh m = ceiling_over_walls(-INFINITY, 0.5);
