@@ -30,11 +30,13 @@ Vec3 unit_normal(const Mesh& m, const Triangle& t) {
     return len > 0 ? n / len : Vec3{};
 }
 
-// Is c's corner of the triangle (a, b, c) a cap's apex, c almost on the edge a-b?
+// Is c's corner of the triangle (a, b, c) a cap's apex, c almost on the edge a-b? Every corner of
+// every face is asked at every repair: the angle is compared as a cosine, without acos.
 bool is_apex(const Mesh& m, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    static const double max_cos = std::cos(deg_to_rad(kCapApexDeg));
     const Vec3 u = m.vertices[a] - m.vertices[c], v = m.vertices[b] - m.vertices[c];
-    const double cos_c = dot(u, v) / (norm(u) * norm(v));
-    return rad_to_deg(std::acos(std::clamp(cos_c, -1.0, 1.0))) >= kCapApexDeg;
+    const double lengths = norm(u) * norm(v);
+    return lengths > 0 && dot(u, v) <= max_cos * lengths;
 }
 
 bool has_cap(const Mesh& m, const Triangle& t) {

@@ -36,19 +36,26 @@ std::array<Vec3, 5> square_points(const Vec3& c, double w) {
     return {c, c + Vec3{h, h, 0}, c + Vec3{h, -h, 0}, c + Vec3{-h, -h, 0}, c + Vec3{-h, h, 0}};
 }
 
-// How far the overhang above a square's corners comes down below `z` (0 when it does not),
-// nullopt when nothing is above the centre.
-std::optional<double> ceiling_drop(const ModelQuery& model, const std::array<Vec3, 5>& square, double z) {
+// The overhang above a horizontal square: how far it comes down below `z` over the square's
+// corners (0 when it does not), and its height straight above the centre.
+struct Ceiling {
     double drop = 0;
+    double over_centre = 0;
+};
+
+// nullopt when nothing is above the centre.
+std::optional<Ceiling> ceiling_above(const ModelQuery& model, const std::array<Vec3, 5>& square, double z) {
+    Ceiling c;
     for (size_t i = 0; i < square.size(); ++i) {
         auto hit = model.first_hit(square[i], {0, 0, 1});
         if (!hit) {
             if (i == 0) return std::nullopt;
             continue;  // this corner reaches past the overhang's edge
         }
-        drop = std::max(drop, z - hit->point.z);
+        if (i == 0) c.over_centre = hit->point.z;
+        c.drop = std::max(c.drop, z - hit->point.z);
     }
-    return drop;
+    return c;
 }
 
 // Does a tip's top square at `top` keep tip_side_clearance from a wall beside it (a slot's or a
@@ -57,14 +64,6 @@ std::optional<double> ceiling_drop(const ModelQuery& model, const std::array<Vec
 // the nearest plain fit.
 bool keeps_clearance_beside(const ModelQuery& model, const Vec3& top, const Params& p) {
     return square_is_clear(model, top, p.tip_diameter + 2 * tip_side_clearance(p));
-}
-
-// Is the ceiling straight above `top` one gap up (within kLevel)? A top moved off a wall must
-// still touch what its sample hangs from: beside a lowest point or under a curve the ceiling
-// rises away from the sample, and a top left at the sample's height would hang below it in air.
-bool under_its_ceiling(const ModelQuery& model, const Vec3& top, const Params& p) {
-    auto hit = model.first_hit(top, {0, 0, 1});
-    return hit && hit->distance <= p.gap + kLevel;
 }
 
 // How much lower than a gap under the sample a tip's top may sit and still count as a contact.
@@ -141,12 +140,12 @@ Attempt pillar_at(const ModelQuery& model, const Vec3& sample, const Vec3& centr
     const Vec3 mid{centre.x, centre.y, 0.5 * (sample.z + below)};
     const auto top = square_points(mid, p.tip_diameter), foot = square_points(mid, p.d_min);
     if (!in_open_air(model, mid, top, foot)) return {};
-    auto drop = ceiling_drop(model, top, sample.z);
-    if (!drop || *drop > allowed_drop(p)) return {};
+    auto ceiling = ceiling_above(model, top, sample.z);
+    if (!ceiling || ceiling->drop > allowed_drop(p)) return {};
     const Floor fl = floor_under(model, mid, p.d_min, p.gap);
     Pillar pl;
     pl.on_model = fl.on_model;
-    pl.top = {centre.x, centre.y, sample.z - *drop - p.gap};
+    pl.top = {centre.x, centre.y, sample.z - ceiling->drop - p.gap};
     pl.bottom = {centre.x, centre.y, fl.on_model ? fl.z + p.gap : 0.0};
     if (pl.top.z - pl.bottom.z < p.layer_height) return {PillarFit::TooLow, pl};
     // A foot that would have to stand on its uphill corner (a slope too steep across it) does not fit.
@@ -208,24 +207,28 @@ Vec3 contact_under_tip(const ModelQuery& model, const Vec3& contact, double from
 std::optional<Vec3> place_tip_top(const ModelQuery& model, const Vec3& sample, const Params& p) {
     // Rays start a tip's length below the gap, under the overhang.
     const double start = sample.z - p.gap - p.tip_length;
-    bool ceiling = false;
+    bool any_ceiling = false;
     std::optional<Vec3> nearest_fit;  // taken when no top that fits keeps the side clearance
     for (const auto& off : nearby_offsets()) {
         const Vec3 c{sample.x + off.x, sample.y + off.y, start};
-        auto drop = ceiling_drop(model, square_points(c, p.tip_diameter), sample.z);
-        ceiling = ceiling || drop;
-        if (!drop || *drop > allowed_drop(p)) continue;
-        Vec3 top{c.x, c.y, sample.z - p.gap - *drop};
+        auto ceiling = ceiling_above(model, square_points(c, p.tip_diameter), sample.z);
+        any_ceiling = any_ceiling || ceiling;
+        if (!ceiling || ceiling->drop > allowed_drop(p)) continue;
+        Vec3 top{c.x, c.y, sample.z - p.gap - ceiling->drop};
         // A corner of the top in the model (the overhang's edge turning down beside the sample)
         // is no place for a tip.
         if (!square_is_clear(model, top, p.tip_diameter)) continue;
-        if (!nearest_fit) nearest_fit = top;
-        if (keeps_clearance_beside(model, top, p) && (top == *nearest_fit || under_its_ceiling(model, top, p)))
+        // A top moved off a wall must still touch what its sample hangs from: beside a lowest
+        // point or under a curve the ceiling rises away from the sample, and a top left at the
+        // sample's height would hang below it in air.
+        const bool moved = nearest_fit.has_value();
+        if (!moved) nearest_fit = top;
+        if (keeps_clearance_beside(model, top, p) && (!moved || ceiling->over_centre - top.z <= p.gap + kLevel))
             return top;
     }
     if (nearest_fit) return nearest_fit;
     // Nothing above at all (a point given in open air): no gap to keep but the sample's own.
-    if (!ceiling) return sample - Vec3{0, 0, p.gap};
+    if (!any_ceiling) return sample - Vec3{0, 0, p.gap};
     return std::nullopt;
 }
 
