@@ -66,9 +66,10 @@ double touching_space(const Params& p);
 
 // How far a tip's top keeps, sideways, from a wall of the model beside it in its own layer: half
 // a line width, PrusaSlicer's default xy spacing for its own supports (50 % of a line). Nearer,
-// the tip's outer line prints against the wall's and fuses with it. (CuraEngine keeps its xy
-// distance, 0.7 mm, and trims our supports there too; keeping that much would take tips further
-// from their samples than placement moves them.)
+// the tip's outer line prints against the wall's and fuses with it. The Cura profile we write
+// sets Cura's support_xy_distance to this (output/threemf.hpp): at Cura's 0.7 mm default it trims
+// tips we placed this close, and keeping 0.7 mm here would take tips further from their samples
+// than placement moves them.
 double tip_side_clearance(const Params& p);
 
 // How far below the model a tip's top may sit and still count as a contact: the z gap, plus what

@@ -199,7 +199,7 @@ std::vector<OutputFile> output_files(const Result& r, const Job& job, const std:
                          return emit_scad(r.supports, job, meta);
                      }});
     files.push_back({"clever_support.scad", [] { return scad_template_library(); }});
-    files.push_back({"clever_support.curaprofile", [] { return encode_cura_profile("clever-support supports"); }});
+    files.push_back({"clever_support.curaprofile", [&job] { return encode_cura_profile("clever-support supports", job.params); }});
     return files;
 }
 

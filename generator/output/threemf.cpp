@@ -10,6 +10,8 @@
 #include <tuple>
 #include <zip.h>
 
+#include "core/rules.hpp"
+
 namespace cs {
 namespace {
 
@@ -230,23 +232,27 @@ Settings prusa_support_volume_settings(const Params& p) {
             {"external_perimeter_extrusion_width", line_width}};
 }
 
-const Settings& cura_support_line_settings() {
-    static const Settings settings = {{"support_wall_count", "1"},
-                                      {"support_infill_rate", "0"},
-                                      {"support_join_distance", "0"},
-                                      {"support_interface_enable", "False"},
-                                      {"limit_support_retractions", "True"}};
-    return settings;
+Settings cura_support_line_settings(const Params& p) {
+    return {{"support_wall_count", "1"},
+            {"support_infill_rate", "0"},
+            {"support_join_distance", "0"},
+            {"support_interface_enable", "False"},
+            {"limit_support_retractions", "True"},
+            // Cura trims a support mesh to its xy distance from the model on every layer (0.7 mm by
+            // default), which cut the top layers off tips our geometry had already kept clear of a
+            // wall: 3-15 tip layers per benchmark model. Our tips keep tip_side_clearance, so Cura
+            // may keep that much and no more.
+            {"support_xy_distance", fmt::format("{:.3g}", tip_side_clearance(p))}};
 }
 
-std::string encode_cura_profile(const std::string& profile_name) {
+std::string encode_cura_profile(const std::string& profile_name, const Params& p) {
     // Cura 4.13's container format: version 4, setting_version 19 (CuraApplication.SettingVersion).
     // quality_type "normal" is the quality every machine has; the settings apply on top of it.
     std::string cfg = fmt::format(
         "[general]\nversion = 4\nname = {}\ndefinition = fdmprinter\n\n"
         "[metadata]\ntype = quality_changes\nquality_type = normal\nsetting_version = 19\n\n[values]\n",
         profile_name);
-    for (const auto& [key, value] : cura_support_line_settings()) cfg += key + " = " + value + "\n";
+    for (const auto& [key, value] : cura_support_line_settings(p)) cfg += key + " = " + value + "\n";
     return encode_zip({{"clever_support_supports", std::move(cfg)}});
 }
 

@@ -39,15 +39,18 @@ const Settings& cura_support_mesh_settings();
 Settings prusa_support_volume_settings(const Params& p);
 
 // Cura's global / per-extruder support settings under which a support mesh prints like its tree
-// supports (they cannot be set per object): one wall, no infill, no joining of neighbouring struts
+// supports (they cannot be set per object; CuraEngine takes them from the support extruder even
+// when a support mesh carries its own): one wall, no infill, no joining of neighbouring struts
 // (support_join_distance would fill the N-profile), no interface, no retraction between support
-// islands (Cura's default, which some printer profiles switch off).
-const Settings& cura_support_line_settings();
+// islands (Cura's default, which some printer profiles switch off), and an xy distance from the
+// model no wider than the clearance our tips keep (core/rules.hpp: tip_side_clearance), so Cura
+// does not trim tips our geometry already kept clear. `p` gives that clearance.
+Settings cura_support_line_settings(const Params& p);
 
 // A Cura profile (.curaprofile: a ZIP of one quality_changes .cfg) with cura_support_line_settings,
 // to import once in Cura (Preferences -> Profiles -> Import). Cura 4.13's format; newer Cura
 // versions upgrade it on import.
-std::string encode_cura_profile(const std::string& profile_name);
+std::string encode_cura_profile(const std::string& profile_name, const Params& p);
 
 // Cura form: an object per part, grouped as components of one build item (so they keep their
 // relative position); each part's settings become <metadatagroup> "cura:" metadata.

@@ -10,6 +10,9 @@
 #include <regex>
 #include <zip.h>
 
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
 #include "mesh/mesh_io.hpp"
 #include "output/threemf.hpp"
 #include "support.hpp"
@@ -207,15 +210,39 @@ TEST(ThreeMF, EntriesAreDeflatedAndTheSameInputGivesTheSameBytes) {
 }
 
 TEST(ThreeMF, CuraProfileHoldsTheSupportLineSettingsInCurasFormat) {
-    auto files = unzip(encode_cura_profile("clever-support supports"));
+    auto files = unzip(encode_cura_profile("clever-support supports", Params{}));
     ASSERT_EQ(files.size(), 1u);
     const std::string& cfg = files.begin()->second;
     for (const char* line : {"[general]\nversion = 4\n", "name = clever-support supports\n", "definition = fdmprinter\n",
                              "[metadata]\ntype = quality_changes\n", "quality_type = normal\n", "setting_version = 19\n",
                              "[values]\n", "support_wall_count = 1\n", "support_infill_rate = 0\n",
-                             "support_join_distance = 0\n"})
+                             "support_join_distance = 0\n", "support_xy_distance = 0.2\n"})
         EXPECT_NE(cfg.find(line), std::string::npos) << line;
-    EXPECT_EQ(count(cfg, " = "), 6 + long(cura_support_line_settings().size()));
+    EXPECT_EQ(count(cfg, " = "), 6 + long(cura_support_line_settings(Params{}).size()));
+}
+
+// Cura trims a support mesh to support_xy_distance from the model; the profile lets it keep the
+// clearance our tips keep (half the preset's line width), never Cura's 0.7 mm default.
+TEST(ThreeMF, CuraProfileXyDistanceIsTheTipsSideClearance) {
+    Params p;
+    p.line_width = 0.45;
+    auto cfg = unzip(encode_cura_profile("x", p)).begin()->second;
+    EXPECT_NE(cfg.find("support_xy_distance = 0.225\n"), std::string::npos) << cfg;
+}
+
+// The bench slices our support mesh with profile.json's "mesh" mode; it must be what the profile
+// we hand users sets, or the bench measures a route no user takes.
+TEST(ThreeMF, BenchCuraMeshModeIsTheProfileWeWrite) {
+    std::ifstream in(source_dir() + "/bench/slicers/profile.json");
+    ASSERT_TRUE(in) << "bench/slicers/profile.json";
+    const auto cura = nlohmann::json::parse(in).at("cura");
+    const auto& mode = cura.at("support_modes").at("mesh");
+    const auto& base = cura.at("settings");
+    for (const auto& [key, value] : cura_support_line_settings(Params{})) {
+        const auto& v = mode.contains(key) ? mode.at(key) : base.at(key);
+        const std::string as_text = v.is_boolean() ? (v.get<bool>() ? "True" : "False") : fmt::format("{}", v.get<double>());
+        EXPECT_EQ(as_text, value) << key;
+    }
 }
 
 TEST(ThreeMF, NamesAreEscapedAndEmptySupportsAreLeftOut) {
