@@ -58,12 +58,16 @@ std::optional<Ceiling> ceiling_above(const ModelQuery& model, const std::array<V
     return c;
 }
 
+// A square w wide with tip_side_clearance on every side: what must stay clear of the model for a
+// tip's top or a pillar to keep that clearance.
+double with_side_clearance(double w, const Params& p) { return w + 2 * tip_side_clearance(p); }
+
 // Does a tip's top square at `top` keep tip_side_clearance from a wall beside it (a slot's or a
 // hole's ceiling meeting its side)? Under a sloping ceiling the wider square's downhill corners
 // reach into the overhang itself: such tops fail this test wherever they go, and placement keeps
 // the nearest plain fit.
 bool keeps_clearance_beside(const ModelQuery& model, const Vec3& top, const Params& p) {
-    return square_is_clear(model, top, p.tip_diameter + 2 * tip_side_clearance(p));
+    return square_is_clear(model, top, with_side_clearance(p.tip_diameter, p));
 }
 
 // How much lower than a gap under the sample a tip's top may sit and still count as a contact.
@@ -132,8 +136,19 @@ bool in_open_air(const ModelQuery& model, const Vec3& centre, const std::array<V
 struct Attempt {
     PillarFit fit = PillarFit::NoRoom;
     Pillar pillar;
-    int rank = 1;  // 0: on a level floor, 1: on a slope (air under every corner)
+    // Lower is better. A level floor counts for more than the side clearance: a pillar that stands
+    // on a corner may break off, one beside a wall only prints fused to it.
+    int rank = 3;
 };
+
+constexpr int kRankSlope = 2;     // on a slope (air under every corner)
+constexpr int kRankAgainst = 1;   // nearer a wall beside it than tip_side_clearance
+
+// Does the pillar keep tip_side_clearance from a wall beside it, all the way up? It is a tip with
+// no strut: the same clearance keeps its lines from printing fused to a slot's side.
+bool pillar_keeps_clearance_beside(const ModelQuery& model, const Pillar& pl, const Params& p) {
+    return prism_is_clear(model, pl.bottom, with_side_clearance(p.d_min, p), pl.top, with_side_clearance(p.tip_diameter, p));
+}
 
 Attempt pillar_at(const ModelQuery& model, const Vec3& sample, const Vec3& centre, double below, const Params& p) {
     // Rays start half-way between the overhang and what is below it, in the slot's air.
@@ -150,7 +165,8 @@ Attempt pillar_at(const ModelQuery& model, const Vec3& sample, const Vec3& centr
     if (pl.top.z - pl.bottom.z < p.layer_height) return {PillarFit::TooLow, pl};
     // A foot that would have to stand on its uphill corner (a slope too steep across it) does not fit.
     if (!fl.clear || !prism_is_clear(model, pl.bottom, p.d_min, pl.top, p.tip_diameter)) return {};
-    return {PillarFit::Fits, pl, fl.level ? 0 : 1};
+    const int rank = (fl.level ? 0 : kRankSlope) + (pillar_keeps_clearance_beside(model, pl, p) ? 0 : kRankAgainst);
+    return {PillarFit::Fits, pl, rank};
 }
 
 }  // namespace

@@ -21,7 +21,9 @@ class ModelQuery;
 // below it, or where a tip's strut cannot leave (a slot too low for a tip and a strut). A pillar
 // is a square column, d_min wide at its foot and tip_diameter at its top, on the bed or on the
 // model (its foot the z gap above the highest point under any corner of it: a floor that steps
-// down under the sample must not swallow it).
+// down under the sample must not swallow it). Of the placements that fit near the sample, one on a
+// level floor wins over one on a slope, then one that keeps tip_side_clearance from a wall beside
+// it over one that does not, then the nearest.
 enum class PillarFit {
     Fits,
     TooLow,  // less than a layer between the gap under the overhang and the gap above the floor:

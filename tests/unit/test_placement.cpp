@@ -93,6 +93,38 @@ TEST(FitPillar, WallBesideTheSampleMovesThePillarOff) {
     EXPECT_TRUE(prism_is_clear(q, placed.pillar.bottom, p.d_min, placed.pillar.top, p.tip_diameter));
 }
 
+TEST(FitPillar, KeepsTheSideClearanceFromAWallBesideIt) {
+    // The ledge and wall above, the sample 0.6 mm from the wall: straight below it the pillar's
+    // foot (d_min wide) would stand 0.1 mm from the wall and print fused to its outer line. It
+    // moves off, on the same level bed, until the whole pillar keeps tip_side_clearance.
+    Params p;
+    Mesh m = box({-5, -5, 1.5}, {5, 5, 3});
+    append(m, box({5, -5, 0}, {7, 5, 3}));
+    ModelQuery q(m);
+    const Vec3 sample{4.4, 0, 1.5};
+    auto placed = fit_pillar(q, sample, p);
+    ASSERT_EQ(placed.fit, PillarFit::Fits);
+    const Pillar& pl = placed.pillar;
+    EXPECT_EQ(pl.bottom.z, 0);
+    EXPECT_LE(pl.bottom.x + 0.5 * p.d_min, 5.0 - tip_side_clearance(p) + 1e-9) << "foot keeps the clearance";
+    EXPECT_LE(pl.top.x + 0.5 * p.tip_diameter, 5.0 - tip_side_clearance(p) + 1e-9) << "top keeps the clearance";
+    EXPECT_LE(horizontal_distance(pl.top, sample), 0.5 + 1e-9) << "stays near its sample";
+    EXPECT_NEAR(pl.top.z, 1.5 - p.gap, 1e-9);
+}
+
+TEST(FitPillar, InASlotTooNarrowForTheClearanceThePillarStillGoes) {
+    // A slot 1.2 mm wide, 1.5 mm high: a pillar (1 mm foot) fits, but not with 0.2 mm on both
+    // sides. It is placed anyway: a pillar fused to a wall beats an unsupported overhang.
+    Params p;
+    Mesh m = box({-5, -5, 1.5}, {5, 5, 3});
+    append(m, box({-7, -5, 0}, {-0.6, 5, 1.5}));
+    append(m, box({0.6, -5, 0}, {7, 5, 1.5}));
+    ModelQuery q(m);
+    auto placed = fit_pillar(q, {0, 0, 1.5}, p);
+    ASSERT_EQ(placed.fit, PillarFit::Fits);
+    EXPECT_TRUE(prism_is_clear(q, placed.pillar.bottom, p.d_min, placed.pillar.top, p.tip_diameter));
+}
+
 TEST(PlaceTipTop, EveryCornerKeepsTheGapUnderASteppedCeiling) {
     // The ceiling steps down by 0.5 mm 0.1 mm beside the sample: a square straight under the
     // sample would need to drop further than a contact allows; it moves to the flat side.
