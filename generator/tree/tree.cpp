@@ -394,8 +394,12 @@ private:
         double bound = cands.empty() ? INFINITY : cands[0].span;
         std::vector<char> skipped(fan_.dirs.size(), 0);
         collect_contacts(cx_, t_.nodes[id].p, bound / fan_.cos_min, &skipped, &fan_.slanted_only, cands);
+        // Merges are searched only as far down as the best other way could win. A steep face (a
+        // wall beside the node) can never be stood on, so it bounds nothing: a trunk beside a wall
+        // would otherwise never see the neighbour a few mm away and go to the bed alone.
         bound = INFINITY;
-        for (const auto& c : cands) bound = std::min(bound, c.span);
+        for (const auto& c : cands)
+            if (c.type != Target::SteepModel) bound = std::min(bound, c.span);
         if (tree() && !alone_[id]) collect_merges(cx_, active_nodes_, t_.nodes, id, banned_[id], bound * (1 + 1e-9), cands);
         by_cost(cands);
         if (take_first_clear(id, cands)) return true;

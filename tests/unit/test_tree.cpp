@@ -464,6 +464,25 @@ TEST(GrowTree, BranchesJoinWhenTheJoinLeavesFewerIslands) {
     EXPECT_EQ(far->tree.stats.bed_contacts, 2u);
 }
 
+TEST(GrowTree, BranchesBesideAWallStillJoin) {
+    // The two samples 10 mm apart, 30 mm up, 1.5 mm in front of a wall that goes down to the bed:
+    // the cone's slanted rays hit the wall 1.4 mm below each leaf. A tip cannot stand on a wall, so
+    // that hit must not cut short the search for partners: the branches join 4.2 mm down and one
+    // trunk goes to the bed, as they would in the open. (Before, each went down alone: the arches
+    // example at 80 mm had 25 columns to the bed instead of 11.)
+    Params p;
+    auto g = std::make_unique<Grown>();
+    g->model = cs::test::box({-10, 1, 0}, {20, 5, 35});
+    g->query = std::make_unique<ModelQuery>(g->model);
+    g->samples.samples = {{{0, -0.5, 30}, SampleKind::Face}, {{10, -0.5, 30}, SampleKind::Face}};
+    g->tree = grow_tree(*g->query, g->samples.samples, p);
+    expect_valid_tree(*g, p);
+    expect_every_leaf_reaches_ground(g->tree);
+    EXPECT_EQ(g->tree.stats.merges, 1u);
+    EXPECT_EQ(g->tree.stats.bed_contacts, 1u);
+    EXPECT_EQ(g->tree.stats.model_contacts, 0u);
+}
+
 TEST(GrowTree, TwoLeavesLeanTheirTipsAndMeetJustBelowThem) {
     // 2.5 mm apart (the sampling lattice) under a flat ceiling: standing straight, the leaves' cones
     // meet 2.5 / (2 tan 50) = 1.05 mm below them, five layers each leaf is an island of its own. Each
