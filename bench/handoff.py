@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Every route from our supports to a slicer, against the slicers' own supports, in one run and one profile.
 
-usage: bench/handoff.py [--bin build/generator/clever-support] [--models a,b,...] [--jobs 2] [--work DIR]
+usage: bench/handoff.py [--bin build/generator/clever-support] [--models a,b,PATH@80mm,...] [--jobs 2] [--work DIR]
                         [--out bench/results] [--report-only]
 
 Per model (shared models at their benchmark.json scale, orientation kept):
@@ -38,6 +38,7 @@ sys.path.insert(0, os.path.join(HERE, "slicers"))
 sys.dont_write_bytecode = True
 import gcode_stats  # noqa: E402
 import printed_bodies  # noqa: E402
+import slice as slice_stl  # noqa: E402
 
 DEFAULT_MODELS = ["u_overhang", "extruder_idler", "rocker_arm", "armadillo", "beast", "nefertiti"]
 
@@ -269,8 +270,8 @@ def report_md(data):
          f"_Run {st['date']} on {st['nproc']} cores (load average at start {st['load']}), git commit "
          f"`{st['commit']}`, {st['jobs']} slices at a time; CPU total {st.get('cpu_total_s', 0):.0f} s "
          f"(generator + slicers)._\n",
-         "Profile: bench/slicers/profile.json (both slicers). Models: shared models at their benchmark.json scale, "
-         "orientation kept. *Support* numbers are the route minus the bare model sliced in the same slicer "
+         "Profile: bench/slicers/profile.json (both slicers). Models: shared models at their benchmark.json scale "
+         "(others at the scale their row gives), orientation kept. *Support* numbers are the route minus the bare model sliced in the same slicer "
          "and run: grams, minutes, retractions, travel (m). *Islands*: support islands summed over layers (a new "
          "island after > 1 mm of travel inside support sections; for routes that print our supports as model "
          "geometry: all islands − the bare model's). *Sliced/mesh*: support filament the slicer printed over the "
@@ -317,16 +318,16 @@ def report_md(data):
     L.append("\n## Generation and files\n")
     L.append("*Speed-up*: Cura tree's CPU overhead (CuraEngine with tree support − without supports, same run) over "
              "our generator's CPU (`clever-support`, every output written). Files: what the generator wrote.\n")
-    L.append("| model | triangles | our CPU s | Cura tree overhead CPU s | speed-up | .prusa.3mf MB | .3mf MB | "
+    L.append("| model | scale | triangles | our CPU s | Cura tree overhead CPU s | speed-up | .prusa.3mf MB | .3mf MB | "
              ".supported.stl MB |")
-    L.append("|---|---:|---:|---:|---:|---:|---:|---:|")
+    L.append("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
     for name, m in data["models"].items():
         g, sl = m["gen"].get("tree", {}), m.get("slices", {})
         over = (sl["cura_tree"]["cpu_s"] - sl["cura_none"]["cpu_s"]
                 if "cpu_s" in sl.get("cura_tree", {}) and "cpu_s" in sl.get("cura_none", {}) else None)
         fb = g.get("file_bytes", {})
         mb = lambda k: fmt(fb[k] / 1e6, "{:.2f}") if k in fb else "–"  # noqa: E731
-        L.append(f"| {name} | {g.get('triangles', '–')} | {fmt(g.get('cpu_s'))} | {fmt(over, '{:.1f}')} | "
+        L.append(f"| {name} | {fmt(m.get('scale'), '{:.4g}')} | {g.get('triangles', '–')} | {fmt(g.get('cpu_s'))} | {fmt(over, '{:.1f}')} | "
                  f"{fmt(m.get('targets', {}).get('generation_speedup_vs_cura_tree'), '{:.1f}×')} | "
                  f"{mb('.prusa.3mf')} | {mb('.3mf')} | {mb('.supported.stl')} |")
     extra = ["cura_mesh_time_vs_ours_as_model", "prusa_3mf_time_vs_ours_as_model", "cura_mesh_filament_vs_columns_mesh",
@@ -421,10 +422,34 @@ def summarize(data):
     data["summary"] = {"median": med, "worst": worst, "met": met, "n": n}
 
 
+def model_entry(spec, bench):
+    """A --models entry -> (name, STL path, scale). A shared model's name takes its benchmark.json
+    scale; any other STL is given by its path, as PATH (scale 1), PATH@SCALE or PATH@<N>mm (scaled so
+    its largest extent is N mm, as a user sizes a model they have not printed before)."""
+    if spec in bench:
+        return (spec,) + bench[spec]
+    path, _, size = spec.partition("@")
+    if not path.lower().endswith(".stl") or not os.path.isfile(path):
+        raise ValueError(f"{spec}: neither a shared model ({', '.join(sorted(bench))}) nor an STL file "
+                         "(PATH, PATH@SCALE or PATH@<N>mm)")
+    scale = 1.0
+    try:
+        if size.endswith("mm"):
+            tris = slice_stl.read_stl(path)
+            extent = max(max(v[i] for t in tris for v in t) - min(v[i] for t in tris for v in t) for i in range(3))
+            scale = float(size[:-2]) / extent
+        elif size:
+            scale = float(size)
+    except (ValueError, ZeroDivisionError):
+        raise ValueError(f"{spec}: the part after @ must be a scale (2.5) or a size in mm (80mm)")
+    return os.path.splitext(os.path.basename(path))[0], os.path.abspath(path), scale
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--bin", default=os.path.join(ROOT, "build", "generator", "clever-support"))
-    ap.add_argument("--models", default=",".join(DEFAULT_MODELS))
+    ap.add_argument("--models", default=",".join(DEFAULT_MODELS),
+                    help="shared model names and/or STL paths (PATH, PATH@SCALE, PATH@<N>mm), comma-separated")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--work", default=os.path.join(ROOT, "build", "bench-handoff"))
     ap.add_argument("--out", default=os.path.join(HERE, "results"))
@@ -451,11 +476,12 @@ def main():
             "models": {}}
     cpu_total = 0.0
     os.makedirs(args.work, exist_ok=True)
-    for name in [n.strip() for n in args.models.split(",") if n.strip()]:
-        if name not in bench:
-            print(f"unknown model {name}", file=sys.stderr)
+    for spec in [n.strip() for n in args.models.split(",") if n.strip()]:
+        try:
+            name, path, scale = model_entry(spec, bench)
+        except ValueError as exc:
+            print(f"handoff.py: {exc}", file=sys.stderr)
             return 2
-        path, scale = bench[name]
         log(f"{name}: generating (scale {scale})")
         m = {"scale": scale, "gen": {s: generate(args, name, path, scale, args.work, s) for s in ("tree", "columns")}}
         cpu_total += sum(g.get("cpu_s") or 0 for g in m["gen"].values())
