@@ -2,7 +2,7 @@
 // input: examples/models/molecule.stl
 // sha256: 4671b5efd23397f39fe16bd2f17b8971568c01d88e7267f170aac012f48540f2
 // preset generic-0.4: critical angle 50 deg, layer 0.2 mm, sampling 2.5 mm, gap 0.2 mm, clearance 0.3 mm, strategy tree, supports on model allowed
-// 247 nodes, 236 struts, 126 tips, 6 model contacts, 4 bed contacts, 0 pillars
+// 246 nodes, 237 struts, 126 tips, 3 model contacts, 5 bed contacts, 0 pillars
 // Render: openscad -o out.stl --export-format binstl THIS.scad  (or: clever-support render THIS.scad)
 // Tweak: open in OpenSCAD's Customizer, or pass -D name=value on the command line.
 // Edit by hand: [Manual edits] and [Regrow] below take effect with `clever-support regrow THIS.scad`,
@@ -315,22 +315,21 @@ cs_nodes = [
   /* 228 merge */ [-16.3649, 0.7133, 13.0838],
   /* 229 merge */ [13.4891, -11.7966, 12.7157],
   /* 230 merge */ [11.912, -16.0646, 13.3381],
-  /* 231 contact */ [-22.5988, -2.2037, 2.8],
+  /* 231 merge */ [-22.9395, 7.6532, 10.7286],
   /* 232 merge */ [-16.1067, 6.1779, 11.6999],
   /* 233 merge */ [11.4471, -15.2604, 12.5586],
   /* 234 merge */ [-22.415, -2.172, 11.0986],
   /* 235 bend */ [-17.2433, 5.4085, 9.1841],
   /* 236 merge */ [12.3789, -15.501, 11.7512],
-  /* 237 bed */ [-20.2139, 11.9678, 0],
-  /* 238 merge */ [16.4908, -13.1897, 9.9389],
-  /* 239 contact */ [-12.5783, 4.4998, 2.8],
-  /* 240 merge */ [-19.1855, 7.7518, 8.7985],
-  /* 241 merge */ [15.3762, -13.8162, 8.866],
-  /* 242 contact */ [-22.415, -2.172, 2.8],
-  /* 243 bed */ [7.4124, 10.4709, 0],
+  /* 237 merge */ [16.4908, -13.1897, 9.9389],
+  /* 238 merge */ [-20.4577, -1.2385, 9.279],
+  /* 239 merge */ [15.3762, -13.8162, 8.866],
+  /* 240 bed */ [-4.3104, 11.0641, 0],
+  /* 241 bed */ [-22.9395, 12.656, 0],
+  /* 242 bed */ [7.4124, 10.4709, 0],
+  /* 243 bed */ [-29.8131, -5.1137, 0],
   /* 244 contact */ [-17.9492, 5.4085, 8.4272],
-  /* 245 bed */ [15.3762, -13.8158, 0],
-  /* 246 bed */ [-15.511, 16.6228, 0]
+  /* 245 bed */ [15.3762, -13.8158, 0]
 ];
 // [top node, bottom node]: widths, runs and levels follow from the tree
 cs_struts = [
@@ -547,29 +546,30 @@ cs_struts = [
   /* 210 onto merge */ [227, 229],
   /* 211 onto merge */ [121, 230],
   /* 212 onto merge */ [219, 230],
-  /* 213 onto contact */ [225, 231],
-  /* 214 onto merge */ [198, 232],
-  /* 215 onto merge */ [223, 232],
-  /* 216 onto merge */ [220, 233],
-  /* 217 onto merge */ [230, 233],
-  /* 218 onto merge */ [224, 234],
-  /* 219 onto merge */ [203, 234],
-  /* 220 onto bend */ [124, 235],
-  /* 221 onto merge */ [226, 236],
-  /* 222 onto merge */ [233, 236],
-  /* 223 onto bed */ [125, 237],
-  /* 224 onto merge */ [205, 238],
-  /* 225 onto merge */ [229, 238],
-  /* 226 onto contact */ [228, 239],
-  /* 227 onto merge */ [210, 240],
-  /* 228 onto merge */ [232, 240],
-  /* 229 onto merge */ [236, 241],
-  /* 230 onto merge */ [238, 241],
-  /* 231 onto contact */ [234, 242],
-  /* 232 onto bed */ [209, 243],
-  /* 233 onto contact */ [235, 244],
-  /* 234 onto bed */ [241, 245],
-  /* 235 onto bed */ [240, 246]
+  /* 213 onto merge */ [225, 231],
+  /* 214 onto merge */ [210, 231],
+  /* 215 onto merge */ [198, 232],
+  /* 216 onto merge */ [223, 232],
+  /* 217 onto merge */ [220, 233],
+  /* 218 onto merge */ [230, 233],
+  /* 219 onto merge */ [224, 234],
+  /* 220 onto merge */ [203, 234],
+  /* 221 onto bend */ [124, 235],
+  /* 222 onto merge */ [226, 236],
+  /* 223 onto merge */ [233, 236],
+  /* 224 onto merge */ [125, 231],
+  /* 225 onto merge */ [205, 237],
+  /* 226 onto merge */ [229, 237],
+  /* 227 onto merge */ [228, 238],
+  /* 228 onto merge */ [234, 238],
+  /* 229 onto merge */ [236, 239],
+  /* 230 onto merge */ [237, 239],
+  /* 231 onto bed */ [232, 240],
+  /* 232 onto bed */ [231, 241],
+  /* 233 onto bed */ [209, 242],
+  /* 234 onto bed */ [238, 243],
+  /* 235 onto contact */ [235, 244],
+  /* 236 onto bed */ [239, 245]
 ];
 // [leaf node, [x, y, z] overhang sample above it, [x, y, z] top of its tip]
 cs_leaves = [
@@ -704,17 +704,15 @@ cs_leaves = [
 cs_contacts = [
   /* 126 */ [126, [5.6682, 2.377, 34.8053]],
   /* 127 */ [127, [2.7987, 5.9281, 34.8134]],
-  /* 231 */ [231, [-22.5988, -2.2037, 1.8]],
-  /* 239 */ [239, [-12.5783, 4.4998, 1.8]],
-  /* 242 */ [242, [-22.415, -2.172, 1.8]],
   /* 244 */ [244, [-17.9492, 5.4085, 8.1431]]
 ];
 // [bed node, room: horizontal distance to the model, which limits its foot]
 cs_beds = [
-  /* 237 */ [237, 2.0295],
-  /* 243 */ [243, 19.6902],
-  /* 245 */ [245, 15.1421],
-  /* 246 */ [246, 3.6828]
+  /* 240 */ [240, 6.2432],
+  /* 241 */ [241, 3.4275],
+  /* 242 */ [242, 6.2432],
+  /* 243 */ [243, 6.6669],
+  /* 245 */ [245, 15.1421]
 ];
 // [[x, y, z] top, [x, y, z] bottom]: too short for a tree, d_min up to a tip
 cs_pillars = [
