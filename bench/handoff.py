@@ -198,6 +198,9 @@ def derive(m):
             "support_mm3": r["filament_mm3"] - none["filament_mm3"],
             "support_min": (r["print_time_s"] - none["print_time_s"]) / 60,
             "retractions": g["retractions"] - gn["retractions"],
+            # The bare model has no support sections, so these are the route's own.
+            "support_to_support_retractions": (g.get("support_to_support_retractions")
+                                               if key in SUPPORT_SECTION_ROUTES else None),
             "travel_m": (g["travel_mm"] - gn["travel_mm"]) / 1000,
             "support_islands": (g["support_islands"] if key in SUPPORT_SECTION_ROUTES
                                 else g["islands"] - gn["islands"]),
@@ -272,7 +275,9 @@ def report_md(data):
          f"(generator + slicers)._\n",
          "Profile: bench/slicers/profile.json (both slicers). Models: shared models at their benchmark.json scale "
          "(others at the scale their row gives), orientation kept. *Support* numbers are the route minus the bare model sliced in the same slicer "
-         "and run: grams, minutes, retractions, travel (m). *Islands*: support islands summed over layers (a new "
+         "and run: grams, minutes, retractions, travel (m). *Of them support→support*: retractions on a travel from one "
+         "support extrusion to the next (routes the slicer prints as support); with Cura's limit_support_retractions "
+         "those are travels it routed around the model instead of straight through air. *Islands*: support islands summed over layers (a new "
          "island after > 1 mm of travel inside support sections; for routes that print our supports as model "
          "geometry: all islands − the bare model's). *Sliced/mesh*: support filament the slicer printed over the "
          "support mesh volume (our routes). *Body layers dropped*: cross-sections of our bodies (each body cut "
@@ -284,15 +289,16 @@ def report_md(data):
              "prusa_ours_model": "ours as model (STL)"}
     for slicer, title in (("cura", "CuraEngine 4.13"), ("prusa", "PrusaSlicer 2.5")):
         L.append(f"\n## {title}\n")
-        L.append("| model | route | support g | support min | retractions | travel m | islands | max/layer | "
-                 "sliced/mesh | support sections/mesh | body layers dropped |")
-        L.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+        L.append("| model | route | support g | support min | retractions | of them support→support | travel m | "
+                 "islands | max/layer | sliced/mesh | support sections/mesh | body layers dropped |")
+        L.append("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
         for name, m in data["models"].items():
             for key, row in m.get("derived", {}).items():
                 if ROUTES[key][0] != slicer:
                     continue
                 L.append(f"| {name} | {names[key]} | {row['support_g']:.2f} | {row['support_min']:.0f} | "
-                         f"{row['retractions']} | {row['travel_m']:.1f} | {row['support_islands']} | "
+                         f"{row['retractions']} | {fmt(row.get('support_to_support_retractions'), '{}')} | "
+                         f"{row['travel_m']:.1f} | {row['support_islands']} | "
                          f"{fmt(row['support_islands_max_per_layer'], '{}')} | {fmt(row.get('sliced_over_mesh'))} | "
                          f"{fmt(row.get('support_section_over_mesh'))} | "
                          f"{fmt(row.get('dropped_body_layers'), '{}')}"

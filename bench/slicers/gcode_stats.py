@@ -7,6 +7,10 @@ Reads the G-code of CuraEngine 4.13 (";LAYER:n", ";TYPE:SUPPORT") or PrusaSlicer
 (";LAYER_CHANGE", ";TYPE:Support material"), absolute (M82) or relative (M83) extrusion.
 
 * retractions: moves that only pull filament back (E decreases, no XY move), or G10.
+* support_to_support_retractions: those on a travel from one support extrusion to the next. With
+  CuraEngine's limit_support_retractions these are the travels it could not make in a straight line
+  through air (it went around the model), so they say how often islands on opposite sides of a
+  model part follow each other in the slicer's order.
 * travel_mm: XY length of moves that do not extrude.
 * islands: per layer, the separate pieces the nozzle prints. A new island starts at the first
   extrusion of a layer, and at every extrusion reached after more than ISLAND_TRAVEL_MM of travel
@@ -41,6 +45,8 @@ def parse(path):
     travel_since = math.inf   # XY travel since the last extrusion (inf: none yet on this layer)
     last_was_support = False
     retractions = 0
+    support_to_support = 0
+    retracted_since_support = False   # a retraction since the last extrusion, which was support
     travel = 0.0
     by_type = {}
     with open(path, errors="replace") as f:
@@ -64,6 +70,7 @@ def parse(path):
                 continue
             if code.startswith("G10") and not code.startswith("G10 "):
                 retractions += 1
+                retracted_since_support = last_was_support
                 continue
             if code.startswith("G92"):
                 m = re.search(r"E(-?[0-9.]+)", code)
@@ -90,10 +97,13 @@ def parse(path):
                     layers[-1][0] += new_island
                     if support and (new_island or not last_was_support):
                         layers[-1][1] += 1
+                    support_to_support += support and retracted_since_support
                     last_was_support = support
+                retracted_since_support = False
                 travel_since = 0.0
             elif de < 0 and dist == 0:
                 retractions += 1
+                retracted_since_support = last_was_support
             elif de <= 0 and dist > 0:
                 travel += dist
                 travel_since += dist
@@ -102,6 +112,7 @@ def parse(path):
     return {
         "layers": len(layers),
         "retractions": retractions,
+        "support_to_support_retractions": support_to_support,
         "travel_mm": travel,
         "islands": sum(islands),
         "islands_max_per_layer": max(islands, default=0),

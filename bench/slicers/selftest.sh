@@ -127,6 +127,17 @@ check(gm.get("support_islands_max_per_layer") == 1, "mesh_cura: one support isla
       % gm.get("support_islands_max_per_layer"))
 check(gn.get("support_islands") == 0 and G["bridge_cura_tree"].get("support_islands", 0) > 0,
       "gcode_stats: no support islands without support, some with Cura tree (%s)" % G["bridge_cura_tree"].get("support_islands"))
+# support_to_support_retractions on a hand-made G-code: support -> retract -> support counts; support ->
+# retract -> wall, a support -> support travel without retraction, and wall -> retract -> support do not.
+synthetic = os.path.join(work, "s2s.gcode")
+with open(synthetic, "w") as f:
+    f.write("M82\n;LAYER:0\n;TYPE:SUPPORT\nG0 X0 Y0\nG1 X1 Y0 E1\nG1 E0\nG0 X10 Y0\nG1 E1\nG1 X11 Y0 E2\n"
+            "G0 X20 Y0\nG1 X21 Y0 E3\nG1 E2\n;TYPE:WALL-OUTER\nG0 X30 Y0\nG1 E3\nG1 X31 Y0 E4\nG1 E3\n"
+            ";TYPE:SUPPORT\nG0 X40 Y0\nG1 E4\nG1 X41 Y0 E5\n")
+st = gcode_stats.parse(synthetic)
+check(st["retractions"] == 3 and st["support_to_support_retractions"] == 1,
+      "gcode_stats: 1 of 3 retractions is support -> support (%s of %s)"
+      % (st["support_to_support_retractions"], st["retractions"]))
 print("selftest: %d passed, %d failed" % (passed, failed))
 sys.exit(1 if failed else 0)
 EOF
