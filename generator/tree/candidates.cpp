@@ -118,18 +118,17 @@ void ActiveNodes::remove(int id, const Vec3& p) {
 }
 
 void collect_merges(const CandidateContext& cx, const ActiveNodes& active, const std::vector<Node>& nodes, int id,
-                    const std::vector<int>& banned, double bound, std::vector<Candidate>& out) {
+                    const std::vector<int>& banned, double bound, const Candidate* after, std::size_t keep,
+                    std::vector<Candidate>& out) {
     const Vec3 a = nodes[id].p;
     const double tan_c = cx.fan.tan_c;
     // A partner at horizontal distance D meets this node at least D / (2 tan c) lower (both
     // at one height meet half-way; a lower partner meets lower still).
     const double lb = 1.0 / (2 * tan_c);
-    const size_t keep = kTreeTuning.merge_keep;
     std::vector<Candidate> found;
     auto kth = [&] {
         if (found.size() < keep) return bound;
-        std::nth_element(found.begin(), found.begin() + (keep - 1), found.end(),
-                         [](const Candidate& x, const Candidate& y) { return x.span < y.span; });
+        std::nth_element(found.begin(), found.begin() + (keep - 1), found.end(), cost_less);
         found.resize(keep);
         return std::min(bound, found.back().span);
     };
@@ -143,19 +142,21 @@ void collect_merges(const CandidateContext& cx, const ActiveNodes& active, const
             if (s.z < cx.p.layer_height) return;
             double d = distance(a, s), span = a.z - s.z;
             if (d < 1e-9 || span >= bound) return;
-            found.push_back({d, s == b ? Target::InCone : Target::Merge, span, q, s, {}});
+            const Candidate c{d, s == b ? Target::InCone : Target::Merge, span, q, s, {}};
+            if (!after || cost_less(*after, c)) found.push_back(c);
         },
         [&](double ring) { return ring * lb >= kth(); });
+    kth();  // the batch: at most `keep`, the cheapest
     for (auto& c : found) out.push_back(c);
 }
 
-void by_cost(std::vector<Candidate>& c) {
-    std::sort(c.begin(), c.end(), [](const Candidate& x, const Candidate& y) {
-        if (x.span != y.span) return x.span < y.span;
-        if (x.dist != y.dist) return x.dist < y.dist;
-        if (x.type != y.type) return x.type < y.type;
-        return x.other < y.other;
-    });
+bool cost_less(const Candidate& x, const Candidate& y) {
+    if (x.span != y.span) return x.span < y.span;
+    if (x.dist != y.dist) return x.dist < y.dist;
+    if (x.type != y.type) return x.type < y.type;
+    return x.other < y.other;
 }
+
+void by_cost(std::vector<Candidate>& c) { std::sort(c.begin(), c.end(), cost_less); }
 
 }  // namespace cs

@@ -104,13 +104,16 @@ private:
 };
 
 // Merge candidates of node `id`: where its cone meets those of active nodes the sweep has not
-// passed (but those in `banned`), keeping the kTreeTuning.merge_keep with the least span below
-// `bound`.
+// passed (but those in `banned`), the `keep` cheapest (cost_less) with a span below `bound` that
+// come after `after` (all from the cheapest when null). Fetching batch after batch, each after
+// the last one's dearest, lists every merge in cost order.
 void collect_merges(const CandidateContext& cx, const ActiveNodes& active, const std::vector<Node>& nodes, int id,
-                    const std::vector<int>& banned, double bound, std::vector<Candidate>& out);
+                    const std::vector<int>& banned, double bound, const Candidate* after, std::size_t keep,
+                    std::vector<Candidate>& out);
 
 // Cheapest for the slicer first: the fewest layers the node stays an island of its own, so
 // branches join as high as they can and trunks carry them down; then the shorter strut.
+bool cost_less(const Candidate& x, const Candidate& y);
 void by_cost(std::vector<Candidate>& c);
 
 }  // namespace cs

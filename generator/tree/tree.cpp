@@ -218,10 +218,44 @@ private:
         return placed.fit;
     }
 
+    // Takes the cheapest clear one (by_cost) of the landings in `cands` and the merges with a span
+    // below `bound`. Merge partners are fetched in batches (collect_merges; each twice the last, so
+    // a node in a pocket, where every partner is blocked, rescans the active nodes only a few
+    // times), and a landing is tried only once no partner left to fetch could be cheaper: the
+    // order is the same as with every partner fetched at once. False when none fits; `cands`
+    // then holds all of them, in cost order.
+    bool take_cheapest_clear(int id, std::vector<Candidate>& cands, double bound) {
+        by_cost(cands);
+        if (!tree() || alone_[id]) return take_first_clear(id, cands);
+        std::vector<Candidate> landings = std::move(cands), tried;
+        std::optional<Candidate> after;
+        bool more = true;
+        for (std::size_t batch = kTreeTuning.merge_batch; more; batch *= 2) {
+            std::vector<Candidate> now;
+            collect_merges(cx_, active_nodes_, t_.nodes, id, banned_[id], bound, after ? &*after : nullptr, batch, now);
+            more = now.size() == batch;
+            if (more) after = *std::max_element(now.begin(), now.end(), cost_less);
+            // Landings up to the batch's dearest merge go now; dearer ones wait for the next batch.
+            auto wait = std::partition(landings.begin(), landings.end(),
+                                       [&](const Candidate& c) { return !more || !cost_less(*after, c); });
+            now.insert(now.end(), landings.begin(), wait);
+            landings.erase(landings.begin(), wait);
+            by_cost(now);
+            if (take_first_clear(id, now)) return true;
+            tried.insert(tried.end(), now.begin(), now.end());
+        }
+        cands = std::move(tried);
+        return false;
+    }
+
     // Takes the first candidate whose strut (and what it joins) fits; false when none does.
     bool take_first_clear(int id, const std::vector<Candidate>& cands) {
         for (const auto& c : cands) {
             if (c.type == Target::Merge && options_.lean_merging_leaves && merge_leaning(id, c)) return true;
+            if (const int e = strut_alongside(id, c); e >= 0) {
+                if (join_strut_alongside(id, e)) return true;
+                continue;  // two struts in one column would carry both loads at the width of one
+            }
             if (c.type == Target::SteepModel || !clear(id, c)) continue;
             if (c.type == Target::Merge && (!clear(c.other, c.point) || !can_escape(c.point, merged_estimate(id, c))))
                 continue;
@@ -233,6 +267,71 @@ private:
             return true;
         }
         return false;
+    }
+
+    // Would joining node `id` straight into an active node (InCone) lay its strut along a strut
+    // already ending there? Coming down one line, the two would share faces and corners (not two
+    // closed solids but one torn one: a bend straight above a bend, both 20 mm steps, in the
+    // Menger sponge with --buildplate-only), and one column would carry two loads at the width of
+    // one. That strut's index, or -1.
+    int strut_alongside(int id, const Candidate& c) const {
+        if (c.type != Target::InCone) return -1;
+        const Vec3 &a = t_.nodes[id].p, &b = t_.nodes[c.other].p;
+        for (int e : in_struts_[c.other]) {
+            const Vec3& top = t_.nodes[t_.struts[e].top].p;
+            // The lower of the two tops lies on the other strut's line (within a joint's overlap).
+            if (top.z < a.z ? point_segment_distance(top, a, b) < joint_overlap(p_)
+                            : point_segment_distance(a, top, b) < joint_overlap(p_))
+                return e;
+        }
+        return -1;
+    }
+    // Node `id` joins strut e, which its own strut would run along, where they meet: straight
+    // above the strut's top it joins that top; on the strut (a bend landed on another's column)
+    // the strut is split there. The strut below carries both, as wide as the merged load needs,
+    // if it still clears the model at that width.
+    bool join_strut_alongside(int id, int e) {
+        if (t_.nodes[t_.struts[e].top].p.z >= t_.nodes[id].p.z) return split_strut_at(id, e);
+        const int top = t_.struts[e].top, below = t_.struts[e].bottom;
+        const Vec3 &a = t_.nodes[id].p, &at = t_.nodes[top].p, &to = t_.nodes[below].p;
+        if (!clear(id, at)) return false;
+        const double was_width = width_[top], was_run = run_[top];
+        width_[top] = merged_width(p_, {width_[top], bottom_width(id, at)});
+        run_[top] = 0;  // now a branch point: a new run starts here
+        const bool fits = !enters_keep_out(p_, at, to, bottom_width(top, to)) &&
+                          strut_is_clear(model_, at, top_width(top, to), to, bottom_width(top, to), p_.model_clearance,
+                                         false, joint_overlap(p_)) &&
+                          can_escape(to, merged_width(p_, {width_[below], bottom_width(top, to)}));
+        if (!fits) {
+            width_[top] = was_width, run_[top] = was_run;
+            return false;
+        }
+        retire(id);
+        connect(id, top);
+        width_[below] = merged_width(p_, {width_[below], bottom_width(top, to)});
+        ++t_.stats.merges;
+        return true;
+    }
+    // Node `id` lies on strut e: the strut ends at it, and it carries the strut's load on down to
+    // where the strut went.
+    bool split_strut_at(int id, int e) {
+        const int top = t_.struts[e].top, below = t_.struts[e].bottom;
+        const Vec3 &a = t_.nodes[id].p, &to = t_.nodes[below].p;
+        const double was_width = width_[id], was_run = run_[id];
+        width_[id] = merged_width(p_, {width_[id], bottom_width(top, a)});
+        run_[id] = 0;  // a branch point: a new run starts here
+        if (!clear(id, to) || !can_escape(to, merged_width(p_, {width_[below], bottom_width(id, to)}))) {
+            width_[id] = was_width, run_[id] = was_run;
+            return false;
+        }
+        retire(id);
+        t_.struts[e].bottom = id;
+        in_struts_[id].push_back(e);
+        std::erase(in_struts_[below], e);
+        connect(id, below);
+        width_[below] = merged_width(p_, {width_[below], bottom_width(id, to)});
+        ++t_.stats.merges;
+        return true;
     }
 
     // How far a tip of this height may lean: 0.9 of the critical angle, clear_tip_foot's limit.
@@ -400,9 +499,7 @@ private:
         bound = INFINITY;
         for (const auto& c : cands)
             if (c.type != Target::SteepModel) bound = std::min(bound, c.span);
-        if (tree() && !alone_[id]) collect_merges(cx_, active_nodes_, t_.nodes, id, banned_[id], bound * (1 + 1e-9), cands);
-        by_cost(cands);
-        if (take_first_clear(id, cands)) return true;
+        if (take_cheapest_clear(id, cands, bound * (1 + 1e-9))) return true;
         // Nothing near fits: the farther fan (slanted landings beyond the vertical's reach).
         std::vector<Candidate> far;
         collect_contacts(cx_, t_.nodes[id].p, INFINITY, nullptr, &skipped, far);
@@ -419,7 +516,7 @@ private:
     // The first candidate, or else a step down, clear with only `air` around the strut.
     bool take_tight(int id, const std::vector<Candidate>& cands, double air) {
         for (const auto& c : cands) {
-            if (!clear(id, c, air)) continue;
+            if (strut_alongside(id, c) >= 0 || !clear(id, c, air)) continue;
             if (c.type == Target::Merge && !clear(c.other, c.point, air)) continue;
             ++t_.stats.tight;
             accept(id, c);
@@ -547,7 +644,8 @@ private:
             double len = hit ? hit->distance - margin / std::max(k.step_min_cos, -d.z) : a.z / -d.z;
             for (len = std::min(len, k.step_reach); len * -d.z > std::max(k.step_min_drop, best_drop); len *= k.step_shrink) {
                 Vec3 to = a + d * len;
-                if (clear(id, to, clearance) && (to.z < 1e-6 || can_escape(to, bottom_width(id, to)))) {
+                if (clear(id, to, clearance) && (to.z < 1e-6 || can_escape(to, bottom_width(id, to))) &&
+                    !passes_through_a_node(id, a, to)) {
                     best_drop = a.z - to.z, best = to;
                     break;
                 }
@@ -567,6 +665,22 @@ private:
         activate(c);
         ++t_.stats.steps;
         return true;
+    }
+
+    // Would a bend from `a` to `to` pass through another active node? That node could then only
+    // go down inside the bend's strut: two struts along one line (strut_alongside).
+    bool passes_through_a_node(int id, const Vec3& a, const Vec3& to) const {
+        const Vec3 mid = (a + to) * 0.5;
+        const double reach = 0.5 * horizontal_distance(a, to) + std::max(2.0 * p_.sampling_distance, 1.0);
+        bool hit = false;
+        active_nodes_.visit_near(
+            mid,
+            [&](int q) {
+                const Vec3& b = t_.nodes[q].p;
+                hit = hit || (q != id && b.z < a.z && b.z > to.z && point_segment_distance(b, a, to) < joint_overlap(p_));
+            },
+            [&](double ring) { return hit || ring > reach; });
+        return hit;
     }
 
     bool passes_failed_bend(int id, const Vec3& a, const Vec3& d) const {

@@ -483,6 +483,41 @@ TEST(GrowTree, BranchesBesideAWallStillJoin) {
     EXPECT_EQ(g->tree.stats.model_contacts, 0u);
 }
 
+TEST(GrowTree, APartnerBeyondTheNearestBlockedOnesStillJoins) {
+    // A thin wall (y 1..3) with six samples close behind it and two 14 mm apart in front of it.
+    // For the higher front leaf the six behind are the cheapest partners (about 2.5 mm of island
+    // each) and the wall blocks all of them; the front partner (about 6 mm) comes next. It must
+    // still be found: the front leaves join and one trunk carries them, instead of two columns.
+    // (Before, the search kept only the six cheapest partners: the arches example at 80 mm had 11
+    // trunks to the bed, 6 now.)
+    Params p;
+    auto g = std::make_unique<Grown>();
+    g->model = cs::test::box({-20, 1, 0}, {30, 3, 35});
+    g->query = std::make_unique<ModelQuery>(g->model);
+    g->samples.samples = {{{0, -0.5, 30}, SampleKind::Face}, {{14, -0.5, 29.5}, SampleKind::Face}};
+    for (double x : {-2.5, -1.5, -0.5, 0.5, 1.5, 2.5}) g->samples.samples.push_back({{x, 4.5, 29.5}, SampleKind::Face});
+    g->tree = grow_tree(*g->query, g->samples.samples, p);
+    expect_valid_tree(*g, p);
+    expect_every_leaf_reaches_ground(g->tree);
+    // Where each front leaf ends up: follow its struts down to the bed.
+    auto ground_of = [&](const Vec3& sample) {
+        int v = -1;
+        for (int i = 0; i < static_cast<int>(g->tree.nodes.size()); ++i)
+            if (g->tree.nodes[i].kind == NodeKind::Leaf && horizontal_distance(g->tree.nodes[i].contact, sample) < 1e-9) v = i;
+        for (bool moved = v >= 0; moved;) {
+            moved = false;
+            for (const auto& s : g->tree.struts)
+                if (s.top == v) v = s.bottom, moved = true;
+        }
+        return v;
+    };
+    const int a = ground_of({0, -0.5, 30}), c = ground_of({14, -0.5, 29.5});
+    ASSERT_GE(a, 0);
+    EXPECT_EQ(a, c) << "the front leaves share one trunk";
+    EXPECT_EQ(g->tree.nodes[a].kind, NodeKind::Bed);
+    EXPECT_LT(g->tree.nodes[a].p.y, 1) << "the trunk stays in front of the wall";
+}
+
 TEST(GrowTree, TwoLeavesLeanTheirTipsAndMeetJustBelowThem) {
     // 2.5 mm apart (the sampling lattice) under a flat ceiling: standing straight, the leaves' cones
     // meet 2.5 / (2 tan 50) = 1.05 mm below them, five layers each leaf is an island of its own. Each
