@@ -434,14 +434,19 @@ TEST(GrowTree, LowOverhangsBecomePillarsOrRest) {
 
 namespace {
 
-// Two samples `apart` mm apart at z = 12 over an empty bed (the model is a small box far away).
-std::unique_ptr<Grown> two_samples(double apart, const Params& p) {
+// The tree grown from these face samples beside this model.
+std::unique_ptr<Grown> grow_from(const Mesh& model, const std::vector<Vec3>& at, const Params& p) {
     auto g = std::make_unique<Grown>();
-    g->model = cs::test::box({100, 100, 0}, {101, 101, 1});
+    g->model = model;
     g->query = std::make_unique<ModelQuery>(g->model);
-    g->samples.samples = {{{0, 0, 12}, SampleKind::Face}, {{apart, 0, 12}, SampleKind::Face}};
+    for (const Vec3& s : at) g->samples.samples.push_back({s, SampleKind::Face});
     g->tree = grow_tree(*g->query, g->samples.samples, p);
     return g;
+}
+
+// Two samples `apart` mm apart at z = 12 over an empty bed (the model is a small box far away).
+std::unique_ptr<Grown> two_samples(double apart, const Params& p) {
+    return grow_from(cs::test::box({100, 100, 0}, {101, 101, 1}), {{0, 0, 12}, {apart, 0, 12}}, p);
 }
 
 std::vector<double> all_d_min(const SupportTree& t, const Params& p) { return std::vector<double>(t.struts.size(), p.d_min); }
@@ -471,11 +476,7 @@ TEST(GrowTree, BranchesBesideAWallStillJoin) {
     // trunk goes to the bed, as they would in the open. (Before, each went down alone: the arches
     // example at 80 mm had 25 columns to the bed instead of 11.)
     Params p;
-    auto g = std::make_unique<Grown>();
-    g->model = cs::test::box({-10, 1, 0}, {20, 5, 35});
-    g->query = std::make_unique<ModelQuery>(g->model);
-    g->samples.samples = {{{0, -0.5, 30}, SampleKind::Face}, {{10, -0.5, 30}, SampleKind::Face}};
-    g->tree = grow_tree(*g->query, g->samples.samples, p);
+    auto g = grow_from(cs::test::box({-10, 1, 0}, {20, 5, 35}), {{0, -0.5, 30}, {10, -0.5, 30}}, p);
     expect_valid_tree(*g, p);
     expect_every_leaf_reaches_ground(g->tree);
     EXPECT_EQ(g->tree.stats.merges, 1u);
@@ -491,12 +492,9 @@ TEST(GrowTree, APartnerBeyondTheNearestBlockedOnesStillJoins) {
     // (Before, the search kept only the six cheapest partners: the arches example at 80 mm had 11
     // trunks to the bed, 6 now.)
     Params p;
-    auto g = std::make_unique<Grown>();
-    g->model = cs::test::box({-20, 1, 0}, {30, 3, 35});
-    g->query = std::make_unique<ModelQuery>(g->model);
-    g->samples.samples = {{{0, -0.5, 30}, SampleKind::Face}, {{14, -0.5, 29.5}, SampleKind::Face}};
-    for (double x : {-2.5, -1.5, -0.5, 0.5, 1.5, 2.5}) g->samples.samples.push_back({{x, 4.5, 29.5}, SampleKind::Face});
-    g->tree = grow_tree(*g->query, g->samples.samples, p);
+    std::vector<Vec3> at = {{0, -0.5, 30}, {14, -0.5, 29.5}};
+    for (double x : {-2.5, -1.5, -0.5, 0.5, 1.5, 2.5}) at.push_back({x, 4.5, 29.5});
+    auto g = grow_from(cs::test::box({-20, 1, 0}, {30, 3, 35}), at, p);
     expect_valid_tree(*g, p);
     expect_every_leaf_reaches_ground(g->tree);
     // Where each front leaf ends up: follow its struts down to the bed.
