@@ -17,6 +17,10 @@
 namespace cs {
 namespace {
 
+// Cell of the sweep's XY grids (active nodes, feet): two sample spacings, so a node's nearest
+// neighbours lie in its own cell or the ring around it.
+double grid_cell(const Params& p) { return std::max(2.0 * p.sampling_distance, 1.0); }
+
 // The sweep keeps the books: the nodes and struts grown so far, which nodes are active, what
 // each carries (estimated width, run length), and who may not join whom again. Where a node may
 // go comes from tree/candidates.hpp, whether it fits from tree/clearance.hpp; the sweep takes the
@@ -25,7 +29,7 @@ class Sweep {
 public:
     Sweep(const ModelQuery& model, const Params& p, GrowOptions options = {})
         : model_(model), p_(p), options_(options), fan_(p.critical_angle), cx_{model, p, fan_, tree()},
-          active_nodes_(std::max(2.0 * p.sampling_distance, 1.0)) {}
+          active_nodes_(grid_cell(p)) {}
 
     SupportTree hang_only(const std::vector<Sample>& samples) {
         hang_leaves(samples);
@@ -77,7 +81,7 @@ private:
     // come near each other but not into each other: a foot's room reaches at most half way to the
     // next, plus the air a foot keeps from the model (struts/foot_extra takes that off again).
     void space_feet() {
-        XyGrid<int> beds(std::max(2.0 * p_.sampling_distance, 1.0));
+        XyGrid<int> beds(grid_cell(p_));
         for (int v = 0; v < static_cast<int>(t_.nodes.size()); ++v)
             if (t_.nodes[v].kind == NodeKind::Bed) beds.insert(t_.nodes[v].p, v);
         const double keep = std::sqrt(2.0) * p_.model_clearance - kTreeTuning.feet_apart;
@@ -671,7 +675,7 @@ private:
     // go down inside the bend's strut: two struts along one line (strut_alongside).
     bool passes_through_a_node(int id, const Vec3& a, const Vec3& to) const {
         const Vec3 mid = (a + to) * 0.5;
-        const double reach = 0.5 * horizontal_distance(a, to) + std::max(2.0 * p_.sampling_distance, 1.0);
+        const double reach = 0.5 * horizontal_distance(a, to) + grid_cell(p_);
         bool hit = false;
         active_nodes_.visit_near(
             mid,
