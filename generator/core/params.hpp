@@ -19,6 +19,7 @@ struct Params {
     double layer_height = 0.2;
     double line_width = 0.4;      // nozzle extrusion width (informative; walls use wall_thickness)
     double wall_thickness = 0.5;  // wall of the N-profile: slicers drop 0.4 mm walls (slicer notes, pitfall 6)
+    double filament_density = 1.24;  // g/cm^3 of the preset's material (PLA 1.24, PETG 1.27): the summary's grams
 
     // Sampling and contacts.
     double sampling_distance = 2.5;  // overhang sample spacing on the global XY lattice (chosen by bench)
@@ -43,6 +44,9 @@ struct Params {
     bool supports_on_model = true;       // false = --buildplate-only
     Strategy strategy = Strategy::tree;
     double model_clearance = 0.3;        // extra air kept between a strut and the model
+    // Holes and slots the print bridges (every point of their overhang within reach of an inside
+    // corner, a wall going down from it) get no support unless this is true (overhang.hpp).
+    bool support_bridges = false;
     // Support blockers (placed-model coordinates): no tip, strut, foot or pillar may enter them.
     // Set from a user's edits (--block, support_blockers in a generated .scad); empty by default.
     std::vector<Box3> keep_out;

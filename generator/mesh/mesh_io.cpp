@@ -454,7 +454,7 @@ Mesh parse_mesh(std::string_view bytes, const std::string& format, const std::st
     else if (format == "off") m = parse_off(bytes, name);
     else if (format == "ply") m = parse_ply(bytes, name);
     else
-        fail(name, "unknown mesh format '" + format + "'", "Use an .stl, .obj, .off or .ply file.");
+        fail(name, "unknown mesh format '" + format + "'", "Use an .stl, .obj, .off or .ply file (clever-support also takes an OpenSCAD part, .scad).");
     check_coordinates(m, name);
     if (m.faces.empty() && !allow_empty)
         fail(name, "the file contains no triangles", "Check that it is a mesh file and was exported completely.");
@@ -465,11 +465,11 @@ Mesh read_mesh(const std::string& path, bool allow_empty) {
     struct stat st{};
     if (stat(path.c_str(), &st) != 0)
         fail(path, std::string("cannot open: ") + std::strerror(errno), "Check the path.");
-    if (S_ISDIR(st.st_mode)) fail(path, "is a directory, not a mesh file", "Give the path of an .stl, .obj, .off or .ply file.");
+    if (S_ISDIR(st.st_mode)) fail(path, "is a directory, not a mesh file", "Give the path of an .stl, .obj, .off or .ply file (or an OpenSCAD part, .scad).");
     std::string ext = extension_of(path);
     if (ext != "stl" && ext != "obj" && ext != "off" && ext != "ply")
         fail(path, "unknown format" + (ext.empty() ? std::string(" (no file extension)") : " '." + ext + "'"),
-             "Use an .stl, .obj, .off or .ply file.");
+             "Use an .stl, .obj, .off or .ply file (clever-support also takes an OpenSCAD part, .scad).");
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(path, std::string("cannot read: ") + std::strerror(errno), "Check the file's permissions.");
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

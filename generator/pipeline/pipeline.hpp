@@ -25,7 +25,8 @@ class ModelQuery;
 struct ManualEdits {
     std::vector<Box3> blockers;        // no support solid inside; overhangs inside are not sampled
     std::vector<Vec3> support_points;  // extra points to support, on the model's underside
-    std::vector<int> omit_struts;      // struts of the grown tree left out, with what hangs from them
+    std::vector<int> omit_struts;      // struts of the grown tree left out, with what hangs from them;
+                                       // from the strut count on, pillars (pillar i: struts + i)
     int highlight_strut = -1;          // shown in colour in the .scad; no effect on the supports
 
     bool empty() const { return blockers.empty() && support_points.empty() && omit_struts.empty(); }
@@ -50,6 +51,7 @@ struct Job {
 struct Supports {
     SizedTree sized;
     std::vector<Strut> grown_struts;  // before omit_struts pruned them: the numbering edits refer to
+    std::vector<Pillar> grown_pillars;  // likewise; pillar i is solid grown_struts.size() + i
     std::vector<Body> bodies;
     Mesh mesh;
     double volume = 0;         // of the support solid, overlaps at joints counted once (solid_volume), mm^3
@@ -101,8 +103,9 @@ SupportTree grow_cheaper_tree(const ModelQuery& placed, const SupportTree& hung,
 Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit = {});
 
 // The tree without the struts in `omit` and everything that hangs from them (the struts above, up
-// to the leaves). Nodes keep their indices; those left without a strut become Dropped. Throws
-// ParameterError for an index that is not a strut of the tree.
+// to the leaves), and without the pillars in `omit` (pillar i is index struts + i). Nodes keep
+// their indices; those left without a strut become Dropped. Throws ParameterError for an index
+// that is neither a strut nor a pillar of the tree.
 SupportTree prune_struts(SupportTree tree, const std::vector<int>& omit);
 
 // The samples a user's edits leave: none inside a blocker or whose tip would pass through one,
@@ -119,5 +122,12 @@ bool is_scad_input(const std::string& path);
 // The placement as 13 numbers: scale, the rotation's rows, the translation. A user's edits are
 // in the placed model's coordinates: a regrow compares these to know whether they still fit.
 std::vector<double> pose_numbers(const Placement& placement);
+
+// The placement in words, for the summary and the .scad header:
+//   "scaled 1, rotated 90 deg about X, then 0 about Y, then 0 about Z, then moved by (-10.00, 4.00, 12.50) mm"
+std::string pose_in_words(const Placement& placement);
+// How to map a point of the design (the input file's coordinates) to the placed model's (those
+// of <name>.model.stl, the coordinates of --block, --support-point and the .scad's edits).
+std::string pose_mapping(const Placement& placement);
 
 }  // namespace cs
