@@ -449,8 +449,8 @@ int cmd_apply(const ApplyArgs& a) {
     if (!a.quiet) {
         std::printf("applied %s (rendered in %.1f s): rewrote %s/%s.supports.stl, .supported.stl, .3mf, .prusa.3mf\n",
                     a.scad.c_str(), rr.seconds, dir.c_str(), name.c_str());
-        std::printf("  supports now %.1f g (%.0f mm^3); the report still describes the supports as grown, and the\n"
-                    "  supports are one merged solid now (check judges them as one)\n",
+        std::printf("  supports now %.2f g (%.0f mm^3); the report still describes the supports as grown, and\n"
+                    "  solids that touch are one solid now (as check judges them)\n",
                     signed_volume(supports) / 1000.0 * p.filament_density, signed_volume(supports));
     }
     return kExitOk;

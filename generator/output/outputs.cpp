@@ -268,7 +268,7 @@ std::string human_summary(const Result& r, const Job& job, const std::string& di
                      r.supports.sized.tree.struts.size(), st.merges, st.bed_contacts, st.model_contacts, st.pillars);
     const Params& p = job.params;
     const double seconds = estimate_slicer_cost(r.supports.sized.tree, mean_strut_widths(r.supports.sized), p).seconds;
-    s += fmt::format("  support     {:.1f} g of filament ({:.0f} mm^3 at {:g} g/cm^3), about {:.1f} min of printing "
+    s += fmt::format("  support     {:.2f} g of filament ({:.0f} mm^3 at {:g} g/cm^3), about {:.1f} min of printing "
                      "added (estimate)\n",
                      support_grams(r.supports, p), r.supports.volume, p.filament_density, seconds / 60);
     s += fmt::format("              {:.0f} mm of struts\n", r.supports.length);

@@ -396,8 +396,13 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
     // Holes and slots the print bridges: the anchors (at the lean reach) carry all their lattice
     // point would, so it gets no sample. Judged before any sample is placed: only the walls count.
     if (!o.support_bridges && !res.anchors.empty()) {
-        const XyGrid<Vec3> near = demand_grid(demand, reach);
-        std::erase_if(lattice_points, [&](const Vec3& p) { return bridged(p, near, grid, reach, o.critical_angle); });
+        OverhangOptions judged = o;
+        judged.sampling_distance = o.bridge_sampling > 0 ? o.bridge_sampling : o.sampling_distance;
+        const double bridge_reach = coverage_reach(judged.sampling_distance);
+        CoverGrid walls{lean_reach(judged), o.critical_angle};
+        for (const auto& a : res.anchors) walls.add(a);
+        const XyGrid<Vec3> near = demand_grid(demand, bridge_reach);
+        std::erase_if(lattice_points, [&](const Vec3& p) { return bridged(p, near, walls, bridge_reach, o.critical_angle); });
     }
     for (const auto& p : lattice_points)
         if (p.z >= o.bed_height) res.samples.push_back({p, SampleKind::Face}), lattice.add(p);

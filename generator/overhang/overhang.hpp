@@ -61,6 +61,8 @@ struct OverhangOptions {
     double touching_space = 0.6;    // free space below a point under which it rests on what is below
                                     // (the tree's touching_space: two z gaps and a layer)
     bool support_bridges = false;   // true: lattice points in holes the print bridges keep their samples
+    double bridge_sampling = 0;     // the spacing whose reach judges what bridges (0: sampling_distance);
+                                    // orientation scores poses at twice the spacing, holes at the run's
 };
 
 // Horizontal distance within which a support contact covers an overhang point: half the diagonal of

@@ -86,7 +86,8 @@ Orientation orient_by_support(const Mesh& scaled, const Params& p, const std::st
     Params coarse = p;
     coarse.sampling_distance = 2 * p.sampling_distance;
     coarse.keep_out.clear();  // a user's blockers are in the chosen pose's coordinates
-    OverhangOptions coarse_oo{p.critical_angle, coarse.sampling_distance, p.layer_height, touching_space(p), p.support_bridges};
+    OverhangOptions coarse_oo{p.critical_angle, coarse.sampling_distance, p.layer_height, touching_space(p),
+                              p.support_bridges, p.sampling_distance};
     return choose_orientation(scaled, p, orient, [&](const Mesh& rotated) {
         Placement pl;
         Rotation id;
@@ -265,14 +266,34 @@ std::vector<std::string> floating_shells(const Mesh& model, double bed_z, const 
     return out;
 }
 
-// A strut run much longer than it is wide sways under the nozzle even where the strength rule
-// holds it safe (bench/README: slender trunks of --buildplate-only): named with its numbers.
-std::string slender_run_warning(const SizedTree& sized) {
-    if (sized.worst_length_to_width <= kComfortableLengthToWidth) return "";
-    return fmt::format("the most slender strut run is {:.1f} times as long as it is wide (over {:g}, the strength rule's "
-                       "comfortable range): it may sway or snap while printing. Raise --d-min, or let supports stand "
-                       "on the model (drop --buildplate-only)",
-                       sized.worst_length_to_width, kComfortableLengthToWidth);
+// A lone strut: a leaf's way down to the bed or the model that no other strut joins, much longer
+// than it is wide. Nothing braces it: it sways under the nozzle where the strength rule still
+// passes it (the hook's 50 mm buildplate-only strut). The most slender one, with where it is.
+std::string lone_strut_warning(const SizedTree& sized, bool buildplate_only) {
+    const auto& t = sized.tree;
+    double worst = 0, worst_length = 0, worst_width = 0;
+    Vec3 top, bottom;
+    for (size_t leaf = 0; leaf < t.nodes.size(); ++leaf) {
+        if (t.nodes[leaf].kind != NodeKind::Leaf) continue;
+        double length = 0, width = INFINITY;
+        int n = static_cast<int>(leaf), e = sized.out_strut[n];
+        bool joined = false;
+        for (; e >= 0 && !joined; e = sized.out_strut[n]) {
+            length += sized.struts[e].length;
+            width = std::min(width, sized.struts[e].top_width);
+            n = t.struts[e].bottom;
+            joined = sized.in_struts[n].size() > 1;
+        }
+        if (joined || length == 0 || !(width > 0)) continue;
+        if (const double ratio = length / width; ratio > worst)
+            worst = ratio, worst_length = length, worst_width = width, top = t.nodes[leaf].p, bottom = t.nodes[n].p;
+    }
+    if (worst <= kComfortableLengthToWidth) return "";
+    return fmt::format("a lone strut from ({:.1f}, {:.1f}, {:.1f}) down to ({:.1f}, {:.1f}, {:.1f}) is {:.0f} mm long and "
+                       "{:.1f} mm wide (length-to-width {:.1f}, over {:g}, the strength rule's comfortable range) and "
+                       "no other strut braces it: it may sway or snap while printing. Raise --d-min{}",
+                       top.x, top.y, top.z, bottom.x, bottom.y, bottom.z, worst_length, worst_width, worst,
+                       kComfortableLengthToWidth, buildplate_only ? ", or let supports stand on the model (no --buildplate-only)" : "");
 }
 
 }  // namespace
@@ -405,7 +426,7 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     for (auto& w : untipped_support_points(*query, r.supports.sized.tree, job.edits, p)) r.warnings.push_back(std::move(w));
     query.reset();
     for (auto& w : floating_shells(r.model, 0.5 * p.layer_height, input)) r.warnings.push_back(std::move(w));
-    if (auto w = slender_run_warning(r.supports.sized); !w.empty()) r.warnings.push_back(std::move(w));
+    if (auto w = lone_strut_warning(r.supports.sized, !p.supports_on_model); !w.empty()) r.warnings.push_back(std::move(w));
     if (const auto& st = r.supports.sized.tree.stats; st.dropped)
         r.warnings.push_back(std::to_string(st.dropped) + " overhang samples lie where no strut fits" +
                              (p.supports_on_model ? "" : " (or can reach the bed)") +
