@@ -443,14 +443,15 @@ TEST(Cli, CheckWithoutArgumentsIsAUsageError) {
 
 namespace {
 
-// A 12 x 10 x 6 block with a 2 x 2 mm tunnel through it along y (floor z 2, ceiling z 4): a
-// horizontal slot the printer bridges. With --orient keep.
-std::string write_tunnel(const TempDir& dir) {
-    cs::test::CellGrid g({-6, -1, 1, 6}, {-5, 5}, {0, 2, 4, 6});
+// A 12 x 10 x 6 block with a tunnel `width` mm wide through it along y (floor z 2, ceiling z 4):
+// a horizontal slot the printer bridges. With --orient keep.
+std::string write_tunnel(const TempDir& dir, double width = 2) {
+    const double w = width / 2;
+    cs::test::CellGrid g({-6, -w, w, 6}, {-5, 5}, {0, 2, 4, 6});
     g.fill({-6, -5, 0}, {6, 5, 2});
     g.fill({-6, -5, 4}, {6, 5, 6});
-    g.fill({-6, -5, 2}, {-1, 5, 4});
-    g.fill({1, -5, 2}, {6, 5, 4});
+    g.fill({-6, -5, 2}, {-w, 5, 4});
+    g.fill({w, -5, 2}, {6, 5, 4});
     std::string path = dir / "tunnel.stl";
     write_stl(path, g.mesh());
     return path;
@@ -587,9 +588,9 @@ TEST(FirstHour, RegrowTakesDefinesAndOut) {
 
 TEST(FirstHour, SaysWhatWasDropped) {
     TempDir tmp;
-    // A support point in a closed tunnel, with supports on the bed only: no strut reaches it.
+    // A support point in a slit narrower than a tip: no strut fits under it.
     std::string out = tmp / "out";
-    CliRun point = cli(quote(write_tunnel(tmp)) + " --orient keep --buildplate-only --support-point 0,0,4 --out " + quote(out));
+    CliRun point = cli(quote(write_tunnel(tmp, 0.6)) + " --orient keep --support-point 0,0,4 --out " + quote(out));
     EXPECT_EQ(point.code, 0) << point.out;
     EXPECT_TRUE(contains(point.out, "support point [0, 0, 4] (on the model at (0.00, 0.00, 4.00)) got no tip")) << point.out;
     // A floating shell.
@@ -597,13 +598,14 @@ TEST(FirstHour, SaysWhatWasDropped) {
     EXPECT_EQ(shell.code, 0) << shell.out;
     EXPECT_TRUE(contains(shell.out, "floats")) << shell.out;
     EXPECT_FALSE(contains(cli(quote(write_good_mesh(tmp)) + " --orient keep --out " + quote(tmp / "t")).out, "floats"));
-    // A lone strut: one small ledge 30 mm up on a post, on the bed only.
-    cs::test::CellGrid g({-2, 0, 1.5}, {-1, 1}, {0, 29, 30});
-    g.fill({-2, -1, 0}, {0, 1, 30});
-    g.fill({0, -1, 29}, {1.5, 1, 30});
+    // Lone struts: a 1 mm post 30 mm tall with an arm to each side, one sample under each arm
+    // (at 5 mm sampling), on the bed only: two 28 mm struts, 1 mm wide, that nothing joins.
+    cs::test::CellGrid g({-6, -0.5, 0.5, 6}, {-0.5, 0.5}, {0, 29, 30});
+    g.fill({-0.5, -0.5, 0}, {0.5, 0.5, 30});
+    g.fill({-6, -0.5, 29}, {6, 0.5, 30});
     std::string post = tmp / "post.stl";
     write_stl(post, g.mesh());
-    CliRun lone = cli(quote(post) + " --orient keep --buildplate-only --out " + quote(tmp / "post"));
+    CliRun lone = cli(quote(post) + " --orient keep --buildplate-only --sampling 5 --out " + quote(tmp / "post"));
     EXPECT_EQ(lone.code, 0) << lone.out;
     EXPECT_TRUE(contains(lone.out, "a lone strut from")) << lone.out;
     EXPECT_TRUE(contains(lone.out, "comfortable range")) << lone.out;
