@@ -403,10 +403,11 @@ int cmd_presets() {
 void warn(const std::string& w) { std::fprintf(stderr, "clever-support: warning: %s\n", w.c_str()); }
 
 // -D defines for a .scad: each checked (a mistake names the define), a warning for each name the
-// file does not assign.
-void check_defines(const std::vector<std::string>& defines, const std::string& scad) {
+// file does not assign (unless `quiet`).
+void check_defines(const std::vector<std::string>& defines, const std::string& scad, bool quiet = false) {
     for (const auto& d : defines) check_define(d);
-    for (const auto& w : unknown_define_warnings(defines, scad)) warn(w);
+    if (!quiet)
+        for (const auto& w : unknown_define_warnings(defines, scad)) warn(w);
 }
 
 int cmd_render(const RenderOptions& o) {
@@ -423,7 +424,7 @@ std::string stem_of(const std::string& path) { return std::filesystem::path(path
 // The supports of an edited .scad, rendered without the model, into the four files that carry
 // them. Parameters given with -D also set the PrusaSlicer volume's settings.
 int cmd_apply(const ApplyArgs& a) {
-    check_defines(a.defines, a.scad);
+    check_defines(a.defines, a.scad, a.quiet);
     EditedScad edited = read_edited_scad(a.scad);
     Params p = edited.job.params;
     set_scad_params(a.defines, p, /*others_allowed=*/true);
@@ -599,7 +600,7 @@ int finish_run(const Result& r, const Job& job, std::string dir, const RunOption
 
 int cmd_generate(const GenerateArgs& g, const RunOptions& o) {
     if (g.input.empty()) throw UsageError("no input mesh given. Example: clever-support model.stl (see --help)");
-    if (is_scad_input(g.input)) check_defines(g.part_defines, g.input);
+    if (is_scad_input(g.input)) check_defines(g.part_defines, g.input, o.quiet);
     Job job;
     job.input = g.input;
     job.defines = g.part_defines;

@@ -446,7 +446,7 @@ TEST(ScadEdit, ADefineThePartHasNotIsWarnedOf) {
     if (!have_openscad()) GTEST_SKIP() << "no OpenSCAD";
     TempDir d;
     write_text(d / "part.scad", kPart);
-    auto r = cs(quote(d / "part.scad") + " -D ww=16 --orient keep -q --out " + quote(d / "a"));
+    auto r = cs(quote(d / "part.scad") + " -D ww=16 --orient keep --out " + quote(d / "a"));
     EXPECT_EQ(r.code, 0) << r.out;
     EXPECT_NE(r.out.find("has no variable `ww` (did you mean `w`?)"), std::string::npos) << r.out;
     auto fine = cs(quote(d / "part.scad") + " -D w=16 --orient keep --out " + quote(d / "b"));
