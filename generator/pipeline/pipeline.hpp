@@ -75,6 +75,7 @@ struct Result {
     Supports columns;          // the baseline, same samples
     std::vector<Stage> stages;
     std::vector<std::string> warnings;
+    std::string input_contents;  // what a container input held (a 3MF's objects and build items), else ""
     std::size_t blocked_samples = 0;  // overhang samples left unsupported by a user's blockers
 };
 
@@ -113,7 +114,8 @@ std::vector<Sample> edited_samples(const ModelQuery& model, std::vector<Sample> 
 
 // The mesh of an input file; a .scad part is rendered by OpenSCAD first (with `defines`).
 // Throws InputError with OpenSCAD's message when the part does not render.
-Mesh load_input(const std::string& path, const std::vector<std::string>& defines);
+// `contents` (when given) gets what a container input held (read_mesh).
+Mesh load_input(const std::string& path, const std::vector<std::string>& defines, std::string* contents = nullptr);
 bool is_scad_input(const std::string& path);
 
 // The placement as 13 numbers: scale, the rotation's rows, the translation. A user's edits are
