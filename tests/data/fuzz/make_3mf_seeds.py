@@ -32,20 +32,22 @@ TET_V = [(0, 0, 0), (10, 0, 0), (0, 10, 0), (0, 0, 10)]
 TET_F = [(0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)]
 
 
-def zip_bytes(entries, declared=None):
-    """A ZIP of (name, text) entries, deflated. `declared` maps a name to the uncompressed size its
-    headers claim (for the bomb); otherwise the true size."""
+def zip_bytes(entries, declared=None, stored=False):
+    """A ZIP of (name, text) entries, deflated (or `stored` as they are, so that the fuzzer's
+    mutations reach the XML). `declared` maps a name to the uncompressed size its headers claim
+    (for the bomb); otherwise the true size."""
     declared = declared or {}
     local, central, offset = b"", b"", 0
+    method = 0 if stored else 8
     for name, text in entries:
         data = text.encode() if isinstance(text, str) else text
         comp = zlib.compressobj(9, zlib.DEFLATED, -15)
-        packed = comp.compress(data) + comp.flush()
+        packed = data if stored else comp.compress(data) + comp.flush()
         size = declared.get(name, len(data))
         crc = zlib.crc32(data)
         n = name.encode()
-        head = struct.pack("<IHHHHHIIIHH", 0x04034B50, 20, 0, 8, 0, 0x21, crc, len(packed), size, len(n), 0)
-        central += struct.pack("<IHHHHHHIIIHHHHHII", 0x02014B50, 20, 20, 0, 8, 0, 0x21, crc, len(packed), size,
+        head = struct.pack("<IHHHHHIIIHH", 0x04034B50, 20, 0, method, 0, 0x21, crc, len(packed), size, len(n), 0)
+        central += struct.pack("<IHHHHHHIIIHHHHHII", 0x02014B50, 20, 20, 0, method, 0, 0x21, crc, len(packed), size,
                                len(n), 0, 0, 0, 0, 0, offset) + n
         local += head + n + packed
         offset += len(head) + len(n) + len(packed)
@@ -91,6 +93,8 @@ def files():
               "</components></object>\n", '<item objectid="5"/>\n', ns=f' xmlns:p="{PROD}"'),
         [("3D/Objects/object_1.model", part)])
     yield "seed-no-rels.3mf", zip_bytes([("3D/3dmodel.model", model(BOX, '<item objectid="1"/>\n'))])
+    yield "seed-stored.3mf", zip_bytes([("_rels/.rels", RELS), ("3D/3dmodel.model", model(
+        BOX + TET, '<item objectid="1"/>\n<item objectid="2" transform="1 0 0 0 1 0 0 0 1 0 30 0"/>\n'))], stored=True)
 
     yield "bad-not_a_zip.3mf", b"solid box\nfacet normal 0 0 1\n"
     yield "bad-no_model_part.3mf", zip_bytes([("[Content_Types].xml", CONTENT_TYPES), ("_rels/.rels", RELS)])
