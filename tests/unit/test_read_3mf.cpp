@@ -74,6 +74,11 @@ std::string tet_object(int id) {
            "<triangle v1=\"0\" v2=\"3\" v3=\"2\"/><triangle v1=\"1\" v2=\"2\" v3=\"3\"/></triangles></mesh></object>";
 }
 
+// Object 2: a group of the given <component> elements.
+std::string group_object(const std::string& components) {
+    return "<object id=\"2\" type=\"model\"><components>" + components + "</components></object>";
+}
+
 std::string model_xml(const std::string& resources, const std::string& build, const std::string& unit = "millimeter") {
     return std::string("<?xml version=\"1.0\"?><model unit=\"") + unit + "\" xmlns=\"" + kCore + "\"><resources>" +
            resources + "</resources><build>" + build + "</build></model>";
@@ -127,12 +132,10 @@ TEST(Read3mf, OurPrusaOutputReadsBackToTheSameModelAndSupports) {
 TEST(Read3mf, BuildItemsTransformsAndComponentsPlaceEveryTriangle) {
     // Object 1 (a tetrahedron) is used three times: in group 2 as is and moved by (100, 0, 0), and
     // by a build item that mirrors it in x and lifts it by 5.
-    const std::string xml = model_xml(
-        tet_object(1) +
-            "<object id=\"2\" type=\"model\"><components><component objectid=\"1\"/>"
-            "<component objectid=\"1\" transform=\"1 0 0 0 1 0 0 0 1 100 0 0\"/></components></object>",
-        "<item objectid=\"2\" transform=\"1 0 0 0 1 0 0 0 1 0 20 0\"/>"
-        "<item objectid=\"1\" transform=\"-1 0 0 0 1 0 0 0 1 0 0 5\"/>");
+    const std::string xml = model_xml(tet_object(1) + group_object("<component objectid=\"1\"/><component objectid=\"1\" "
+                                                                   "transform=\"1 0 0 0 1 0 0 0 1 100 0 0\"/>"),
+                                      "<item objectid=\"2\" transform=\"1 0 0 0 1 0 0 0 1 0 20 0\"/>"
+                                      "<item objectid=\"1\" transform=\"-1 0 0 0 1 0 0 0 1 0 0 5\"/>");
     ThreeMfContents what;
     const Mesh m = parse_3mf(package(xml), "t.3mf", &what);
     ASSERT_EQ(m.faces.size(), 12u);
@@ -151,11 +154,9 @@ TEST(Read3mf, BuildItemsTransformsAndComponentsPlaceEveryTriangle) {
 TEST(Read3mf, NestedTransformsComposeInnerFirst) {
     // A component turned 90 degrees about z inside a group moved by (0, 0, 7): the corner (10,0,0)
     // turns to (0,10,0) and then rises to (0,10,7).
-    const std::string xml = model_xml(
-        tet_object(1) +
-            "<object id=\"2\" type=\"model\"><components>"
-            "<component objectid=\"1\" transform=\"0 1 0 -1 0 0 0 0 1 0 0 0\"/></components></object>",
-        "<item objectid=\"2\" transform=\"1 0 0 0 1 0 0 0 1 0 0 7\"/>");
+    const std::string xml =
+        model_xml(tet_object(1) + group_object("<component objectid=\"1\" transform=\"0 1 0 -1 0 0 0 0 1 0 0 0\"/>"),
+                  "<item objectid=\"2\" transform=\"1 0 0 0 1 0 0 0 1 0 0 7\"/>");
     const Mesh m = parse_3mf(package(xml), "t.3mf");
     ASSERT_EQ(m.vertices.size(), 4u);
     EXPECT_NEAR(m.vertices[1].x, 0, 1e-12);
@@ -182,9 +183,7 @@ TEST(Read3mf, SupportObjectsAreLeftOutAndSaidSo) {
 }
 
 TEST(Read3mf, AFileWithoutBuildItemsPlacesItsTopLevelObjects) {
-    const std::string xml = model_xml(tet_object(1) + "<object id=\"2\" type=\"model\"><components>"
-                                                      "<component objectid=\"1\"/></components></object>",
-                                      "");
+    const std::string xml = model_xml(tet_object(1) + group_object("<component objectid=\"1\"/>"), "");
     const Mesh m = parse_3mf(package(xml), "t.3mf");
     EXPECT_EQ(m.faces.size(), 4u);  // object 2 only; object 1 is its component
 }
