@@ -66,7 +66,8 @@ std::string apply_view_edit(const std::string& text, const nlohmann::json& edit,
     } else if (op == "set") {
         name = edit.value("name", "");
         bool slider = false;
-        for (const auto& s : view_scad_state(text, scad_path)["sliders"]) slider = slider || s["name"] == name;
+        const auto state = view_scad_state(text, scad_path);  // kept: the loop walks into it
+        for (const auto& s : state["sliders"]) slider = slider || s["name"] == name;
         if (!slider) bad_edit("\"" + name + "\" is not a Customizer value of " + scad_path);
         value = edit.value("value", nlohmann::json());
         if (!value.is_number() || !std::isfinite(value.get<double>())) bad_edit(name + " is not a number");

@@ -31,7 +31,7 @@ nlohmann::json customizer_sliders(const std::string& text) {
         if (line.rfind("/* [Manual edits]", 0) == 0) break;
         std::smatch m;
         if (std::regex_search(line, m, slider))
-            out.push_back({{"name", m[1]}, {"value", std::stod(m[2])}, {"min", std::stod(m[3])},
+            out.push_back({{"name", m[1].str()}, {"value", std::stod(m[2])}, {"min", std::stod(m[3])},
                            {"step", std::stod(m[4])}, {"max", std::stod(m[5])}, {"line", no}, {"about", comment}});
         comment = line.rfind("// ", 0) == 0 ? line.substr(3) : "";
     }

@@ -156,8 +156,6 @@ async function main() {
   await page.mouse.move(target.at.x, target.at.y);
   const tip = await page.$eval('#tip', (e) => e.textContent);
   assert.match(tip, new RegExp(`^strut ${target.i} · onto \\w+ · width [\\d.]+–[\\d.]+ mm · length [\\d.]+ mm`));
-  await page.screenshot({ path: path.join(tmp, 'view.png') });
-  if (screenshotOut) fs.copyFileSync(path.join(tmp, 'view.png'), screenshotOut);
   say(`hover: "${tip}"`);
 
   // 1. Click the strut: omitted.
@@ -184,13 +182,43 @@ async function main() {
   await page.waitForFunction(() => window.csView.state().edits.support_blockers.length === 1 ||
     !document.getElementById('message').hidden);
   assert.equal(await page.$eval('#message', (e) => e.textContent), '', 'the blocker is taken');
+  // 4. A Customizer slider re-sizes the struts without a regrow; a value regrow would refuse is
+  // refused with its message, and the file keeps the last good value.
+  const slide = (name, value) => page.$eval(`input[name=${name}]`, (el, v) => {
+    el.value = String(v);
+    el.dispatchEvent(new Event('change'));
+  }, value);
+  const widthsBefore = await page.evaluate(() => window.csView.state().struts.map((s) => s[3]));
+  await slide('k', 0.004);
+  await page.waitForFunction(() => window.csView.state().sliders.find((s) => s.name === 'k').value === 0.004);
+  const widthsAfter = await page.evaluate(() => window.csView.state().struts.map((s) => s[3]));
+  assert.equal(widthsAfter.length, widthsBefore.length, 'the same struts');
+  assert.ok(widthsAfter.some((w, i) => w > widthsBefore[i] + 0.1), 'a larger k makes slanted struts thicker');
+  // The picture for README: the edits shown, the omitted strut hovered.
+  await page.click('[data-camera=front]');
+  const ghost = await page.evaluate((i) => window.csView.strutPixel(i), target.i);
+  if (ghost) await page.mouse.move(ghost.x, ghost.y);
+  await page.screenshot({ path: path.join(tmp, 'view.png') });
+  if (screenshotOut) fs.copyFileSync(path.join(tmp, 'view.png'), screenshotOut);
+
+  await slide('d_min', 5);  // thicker than d_max = 4
+  await page.waitForFunction(() => !document.getElementById('message').hidden);
+  const refusal = await page.$eval('#message', (e) => e.textContent);
+  assert.match(refusal, /arches\.scad: .*d_min/, 'the message names the file and the value, as regrow says it');
+  say(`refused: "${refusal}"`);
+  assert.deepEqual(errors, ['Failed to load resource: the server responded with a status of 400 (Bad Request)'],
+    'the refused edit is the only failed request');
+  errors.length = 0;
+  assert.match(fs.readFileSync(scad, 'utf8'), /^d_min = 1;/m);
+
   const edited = fs.readFileSync(scad, 'utf8');
+  assert.match(edited, /^k = 0\.004;/m);
   assert.deepEqual(scadList(edited, 'omit_struts'), [target.i]);
   say(`edits in the .scad: omit_struts ${JSON.stringify(scadList(edited, 'omit_struts'))}, support_points ` +
       `${JSON.stringify(scadList(edited, 'support_points'))}, support_blockers ${JSON.stringify(scadList(edited, 'support_blockers'))}`);
   const omittedTops = (await page.evaluate(() => window.csView.state().struts)).filter((s) => s[6]).map((s) => s[0]);
 
-  // 4. Regrow, with progress, and the view reloads.
+  // 5. Regrow, with progress, and the view reloads.
   await page.click('#regrow');
   await page.waitForFunction(() => window.csView.regrows === 1, { timeout: 300000 });
   const stage = await page.$eval('#stage', (e) => e.textContent);

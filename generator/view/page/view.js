@@ -127,7 +127,7 @@ function drawSupports() {
   if (!state || !state.struts) return;
   const solid = new THREE.MeshStandardMaterial({ vertexColors: true, roughness: 0.7 });
   solid.userData.base = COLOURS.support;
-  const ghost = new THREE.MeshStandardMaterial({ vertexColors: true, transparent: true, opacity: 0.25, depthWrite: false });
+  const ghost = new THREE.MeshStandardMaterial({ vertexColors: true, transparent: true, opacity: 0.35, depthWrite: false });
   ghost.userData.base = COLOURS.support;
   for (const omitted of [false, true]) {
     const positions = [], strutOfFace = [];
