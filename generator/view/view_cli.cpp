@@ -1,9 +1,9 @@
 #include "view/view_cli.hpp"
 
 #include <CLI/CLI.hpp>
-#include <cstdlib>
 #include <filesystem>
 
+#include "render/render.hpp"
 #include "view/view_server.hpp"
 
 namespace fs = std::filesystem;
@@ -15,14 +15,6 @@ std::string this_executable() {
     std::error_code ec;
     auto p = fs::read_symlink("/proc/self/exe", ec);
     return ec ? std::string("clever-support") : p.string();
-}
-
-std::string page_dir(const std::string& exe) {
-    if (const char* env = std::getenv("CS_VIEW_DIR"); env && *env) return env;
-    auto installed = fs::path(exe).parent_path().parent_path() / "share/clever-support/view";
-    std::error_code ec;
-    if (fs::is_regular_file(installed / "page/index.html", ec)) return installed.string();
-    return CS_VIEW_SOURCE_DIR;
 }
 
 }  // namespace
@@ -39,7 +31,7 @@ int run_view_command(const ViewArgs& a) {
     ViewOptions o;
     o.target = a.target;
     o.cli = this_executable();
-    o.page_dir = page_dir(o.cli);
+    o.page_dir = data_dir() + "/view";
     serve_view(o);
     return 0;
 }

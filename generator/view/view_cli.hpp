@@ -16,9 +16,9 @@ struct ViewArgs {
 // Adds `view` to `app`; the returned subcommand's parsed() tells whether it was chosen.
 CLI::App* add_view_command(CLI::App& app, ViewArgs& a);
 
-// Serves the page (view_server.hpp) until stopped. The page's files are found in $CS_VIEW_DIR,
-// else <prefix>/share/clever-support/view beside an installed executable, else the source tree's
-// generator/view. Throws what serve_view throws.
+// Serves the page (view_server.hpp) until stopped. The page's files are found where the render
+// stage finds the OpenSCAD runner: data_dir() + "/view" (<bin>/../share/clever-support/view;
+// in the build tree a link to generator/view, cmake/install.cmake). Throws what serve_view throws.
 int run_view_command(const ViewArgs& a);
 
 }  // namespace cs

@@ -11,7 +11,6 @@ import http from 'node:http';
 import os from 'node:os';
 import path from 'node:path';
 import assert from 'node:assert/strict';
-import puppeteer from 'puppeteer-core';
 
 const [cli, source, screenshotOut] = process.argv.slice(2);
 const SKIP = 77;
@@ -115,6 +114,12 @@ async function main() {
   await checkRefusals(site);
   say('foreign, token-less and path-traversal requests refused');
 
+  let puppeteer;
+  try {
+    puppeteer = (await import('puppeteer-core')).default;
+  } catch (e) {
+    return skip(`puppeteer-core is not installed in tests/browser (scripts/install-deps.sh installs it): ${e.message.split('\n')[0]}`);
+  }
   const profile = fs.mkdtempSync(path.join(tmp, 'profile-'));
   const chromium = process.env.CHROMIUM || '/usr/bin/chromium';
   if (!fs.existsSync(chromium)) return skip(`no ${chromium} (scripts/install-deps.sh installs Debian's chromium)`);
