@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Shared by the install tests: install the build into a temporary prefix, move it out of the build
 # tree's sight, run it with the source and build trees hidden.
 #   source lib.sh; install_moved BUILD_DIR SOURCE_DIR   -> sets $tmp, $prefix (the moved copy)
