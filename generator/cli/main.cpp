@@ -441,10 +441,14 @@ int cmd_apply(const ApplyArgs& a) {
     ro.defines = a.defines;
     ro.defines.insert(ro.defines.end(), {"show_model=false", "show_supports=true"});
     ro.openscad = a.openscad;
-    auto rr = render_scad(ro);
-    Mesh supports;
+    RenderResult rr;
+    Mesh supports;  // empty when every solid was left out (OpenSCAD then renders nothing)
     try {
+        rr = render_scad(ro);
         supports = read_mesh(ro.output, /*allow_empty=*/true);
+    } catch (const ExternalToolError& e) {
+        std::remove(ro.output.c_str());
+        if ((std::string(e.what()) + e.log).find("top level object is empty") == std::string::npos) throw;
     } catch (...) {
         std::remove(ro.output.c_str());
         throw;
@@ -676,7 +680,7 @@ void reject_unknown_subcommand(const CLI::App& app, int argc, char** argv) {
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
     throw UsageError("unknown subcommand '" + first + "'" + did_you_mean(first, names) + ". The subcommands are " + list +
-                     "; to grow supports, give a model file (.stl, .obj, .off, .ply, .scad). Run `clever-support --help` "
+                     "; to grow supports, give a model file (" + mesh_formats_text() + " or .scad). Run `clever-support --help` "
                      "for usage.");
 }
 
