@@ -5,12 +5,11 @@
 #include <cstdint>
 #include <fmt/format.h>
 #include <iterator>
-#include <numeric>
 #include <stdexcept>
-#include <tuple>
 #include <zip.h>
 
 #include "core/rules.hpp"
+#include "mesh/weld.hpp"
 
 namespace cs {
 namespace {
@@ -43,30 +42,24 @@ struct IndexedMesh {
     std::vector<std::array<std::uint32_t, 3>> triangles;  // indices into `vertices`
 };
 
-// Identical vertices are shared (3MF meshes are indexed), found by sorting rather than a map: a
-// 5M-triangle scan stays within a few hundred megabytes.
+// Identical vertices are shared (3MF meshes are indexed: mesh/weld.hpp), numbered in order of
+// first use by the faces; degenerate triangles (two corners welded into one) are left out.
 IndexedMesh index_mesh(const Mesh& m) {
-    const auto& mv = m.vertices;
-    std::vector<std::uint32_t> by_coords(mv.size());
-    std::iota(by_coords.begin(), by_coords.end(), 0u);
-    auto key = [&](std::uint32_t i) { return std::make_tuple(mv[i].x, mv[i].y, mv[i].z); };
-    std::sort(by_coords.begin(), by_coords.end(), [&](std::uint32_t a, std::uint32_t b) {
-        return key(a) != key(b) ? key(a) < key(b) : a < b;
-    });
-    std::vector<std::uint32_t> same(mv.size());  // each vertex -> first of its coordinates
-    for (size_t i = 0; i < by_coords.size(); ++i)
-        same[by_coords[i]] = i > 0 && key(by_coords[i]) == key(by_coords[i - 1]) ? same[by_coords[i - 1]] : by_coords[i];
-    // Output numbers in order of first use by the faces.
+    const Welded w = weld_vertices(m);
+    std::vector<std::uint32_t> source;  // each welded vertex -> its first vertex in `m`
+    source.reserve(w.mesh.vertices.size());
+    for (std::uint32_t i = 0; i < w.remap.size(); ++i)
+        if (w.remap[i] == source.size()) source.push_back(i);
     constexpr std::uint32_t kUnused = UINT32_MAX;
-    std::vector<std::uint32_t> out_id(mv.size(), kUnused);
+    std::vector<std::uint32_t> out_id(w.mesh.vertices.size(), kUnused);
     IndexedMesh out;
-    for (const auto& f : m.faces)
+    for (const auto& f : w.mesh.faces)
         for (int k = 0; k < 3; ++k)
-            if (std::uint32_t c = same[f[k]]; out_id[c] == kUnused)
-                out_id[c] = static_cast<std::uint32_t>(out.vertices.size()), out.vertices.push_back(c);
+            if (out_id[f[k]] == kUnused)
+                out_id[f[k]] = static_cast<std::uint32_t>(out.vertices.size()), out.vertices.push_back(source[f[k]]);
     out.triangles.reserve(m.faces.size());
-    for (const auto& f : m.faces) {
-        std::array<std::uint32_t, 3> v = {out_id[same[f[0]]], out_id[same[f[1]]], out_id[same[f[2]]]};
+    for (const auto& f : w.mesh.faces) {
+        std::array<std::uint32_t, 3> v = {out_id[f[0]], out_id[f[1]], out_id[f[2]]};
         if (v[0] != v[1] && v[1] != v[2] && v[0] != v[2]) out.triangles.push_back(v);
     }
     return out;
