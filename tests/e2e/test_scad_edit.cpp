@@ -315,7 +315,7 @@ TEST(ScadEdit, ConfigBlockersAreTheFlagsBlockers) {
     const std::string blocked = read_text(d / "b/tee.supports.stl");
     EXPECT_TRUE(blocked != read_text(d / "n/tee.supports.stl")) << "the blocker changes nothing";
     for (const char* out : {"a", "c", "e"})
-        EXPECT_TRUE(read_text(d / out / "tee.supports.stl") == blocked) << out;
+        EXPECT_TRUE(read_text(d / (std::string(out) + "/tee.supports.stl")) == blocked) << out;
 }
 
 // -------------------------------------------------------------------------- .scad in, rendered
