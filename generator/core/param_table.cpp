@@ -80,7 +80,7 @@ template <class... F>
 struct Overload : F... {
     using F::operator()...;
 };
-// Spelled out for clang before 17 (the fuzz build), which does not deduce an aggregate's arguments.
+// Spelled out for clang 14 (the fuzz build), which does not deduce an aggregate's arguments.
 template <class... F>
 Overload(F...) -> Overload<F...>;
 
