@@ -451,14 +451,8 @@ def slice_models(slicer, support, models, out_dir=None, profile_path=None, scale
             raise ValueError("no such file: %s" % m)
     profile = cura_settings.load_profile(profile_path)
     bed = profile["common"]["bed_mm"]
-    tmp = None
-    if out_dir:
-        work = os.path.abspath(out_dir)
-        os.makedirs(work, exist_ok=True)
-    else:
-        tmp = tempfile.mkdtemp(prefix="clever-slice-")
-        work = tmp
-    try:
+
+    def sliced(work):
         stl = os.path.join(work, "merged.stl")
         support_stl = os.path.join(work, "support_mesh.stl") if support_meshes else None
         if threemf:
@@ -476,13 +470,8 @@ def slice_models(slicer, support, models, out_dir=None, profile_path=None, scale
         result["model_size_mm"] = info["size_mm"]
         result["overrides"] = dict(overrides or {})
         result["out_dir"] = work if out_dir else None
-        if out_dir:
-            with open(os.path.join(work, "result.json"), "w") as f:
-                json.dump(result, f, indent=1)
         return result
-    finally:
-        if tmp:
-            shutil.rmtree(tmp, ignore_errors=True)
+    return in_work_dir(out_dir, sliced)
 
 
 def in_work_dir(out_dir, fn):
