@@ -229,8 +229,11 @@ def check_printer(reg, printer, profiles, objects):
     machine_def = reg.definition(printer)
     keys = set(machine_def.getAllKeys())
     variant = machine.variants.get(machine.preferred_variant_name) or next(iter(machine.variants.values()))
-    diameter = machine_def.getProperty("material_diameter", "default_value") or 2.85
-    material = variant.preferredMaterial(int(round(float(diameter))))
+    # As CuraStackBuilder.createExtruderStack picks them: the preferred nozzle (else the first) and
+    # the preferred material at the extruder definition's rounded material_diameter.
+    extruder_id = (machine_def.getMetaDataEntry("machine_extruder_trains") or {}).get("0", "fdmextruder")
+    diameter = reg.definition(extruder_id).getProperty("material_diameter", "value")
+    material = variant.preferredMaterial(round(float(diameter)))
     groups = machine.getQualityGroups([variant.variant_name], [material.base_file], [True])
     out = {"printer": printer, "quality_definition": machine.quality_definition,
            "nozzle": variant.variant_name, "material": material.base_file,
