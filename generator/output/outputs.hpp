@@ -17,7 +17,8 @@
 #include <utility>
 #include <vector>
 
-#include "pipeline/pipeline.hpp"
+#include "job/job.hpp"
+#include "job/result.hpp"
 
 namespace cs {
 
