@@ -16,6 +16,7 @@
 #   *              --preset prusa-mk4-pla          parameters for every part
 #   bracket.scad   -D width=30 -D holes=2          OpenSCAD values (-D) and parameters for one part
 #   library.scad   skip                            not a part (modules only)
+# Arguments are split at spaces (a string value is written -D label="abc", without spaces).
 # "-D name=value" pairs go to OpenSCAD when the part is rendered. --fit, --scale, --orient,
 # --block and --support-point (each with its value) shape the job and go to the generator only.
 # Every other argument is a clever-support parameter (--preset, --config FILE, --critical-angle,

@@ -1,3 +1,4 @@
+# shellcheck shell=bash
 # Shared by the install tests: install the build into a temporary prefix, move it out of the build
 # tree's sight, run it with the source and build trees hidden.
 #   source lib.sh; install_moved BUILD_DIR SOURCE_DIR   -> sets $tmp, $prefix (the moved copy)
@@ -35,7 +36,8 @@ install_moved() {
 # the installed tool cannot use them even by accident. Where namespaces are not allowed (some
 # containers), runs it as is: the moved prefix and the path check above still hold.
 hidden() {
-    if unshare --mount --map-root-user true 2>/dev/null; then
+    mkdir -p "$tmp/probe"
+    if unshare --mount --map-root-user mount -t tmpfs none "$tmp/probe" 2>/dev/null; then
         local mounts=""
         for d in "${hide_dirs[@]}"; do mounts+="mount -t tmpfs none '$d' && "; done
         unshare --mount --map-root-user bash -c "$mounts"'exec "$@"' hide "$@"

@@ -231,7 +231,7 @@ TEST(Read3mf, DecompressionStopsAtTheLimitWhateverTheHeaderSays) {
     EXPECT_EQ(error_of(bytes), "");
 }
 
-TEST(Read3mf, TheCommandLineReadsA3mfAndSaysWhatItRead) {
+TEST(Read3mf, TheCommandLineReadsA3mfSaysWhatItReadAndItsOutputsReadBack) {
     TempDir t;
     const Mesh a = box({0, 0, 0}, {20, 20, 4}), b = box({0, 0, 0}, {6, 6, 12});
     // Two objects on one plate: a slab and, beside it, a block with a slab-wide ledge on top.
@@ -260,6 +260,24 @@ TEST(Read3mf, TheCommandLineReadsA3mfAndSaysWhatItRead) {
     Mesh placed = read_mesh(t / "out/plate.model.stl");
     EXPECT_NEAR(bounding_box(placed).size().z, 16, 1e-4);
     EXPECT_EQ(placed.faces.size(), 24u);
+
+    // The run's own .3mf and .prusa.3mf read back to its model and supports (the STLs it wrote,
+    // float32: compared by size, shape and volume, the 3MF being shifted onto the plate).
+    const Mesh written = joined(placed, read_mesh(t / "out/plate.supports.stl", true));
+    ASSERT_GT(written.faces.size(), placed.faces.size()) << "the ledge needs supports";
+    for (const std::string file : {"plate.3mf", "plate.prusa.3mf"}) {
+        std::string contents;
+        const Mesh back = read_mesh(t / ("out/" + file), false, &contents);
+        EXPECT_EQ(back.faces.size(), written.faces.size()) << file;
+        const Box3 a = bounding_box(back), b = bounding_box(written);
+        const Vec3 shift = a.min - b.min;
+        EXPECT_NEAR(norm(a.max - b.max - shift), 0, 1e-4) << file;
+        EXPECT_NEAR(shift.z, 0, 1e-4) << file;
+        EXPECT_NEAR(signed_volume(back), signed_volume(written), 1e-3 * signed_volume(written)) << file;
+        EXPECT_NE(contents.find("read as one model of " + std::to_string(written.faces.size()) + " triangles"),
+                  std::string::npos)
+            << contents;
+    }
 }
 
 TEST(Read3mf, TheCommandLineRefusesBadFilesWithExit3AndNothingWritten) {
