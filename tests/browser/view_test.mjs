@@ -166,6 +166,12 @@ async function main() {
   // 1. Click the strut: omitted.
   await page.mouse.click(target.at.x, target.at.y);
   await page.waitForFunction((i) => window.csView.state().edits.omit_struts.includes(i), {}, target.i);
+  // Click the (now faint) strut again: kept; and once more: omitted.
+  await page.mouse.click(target.at.x, target.at.y);
+  await page.waitForFunction(() => window.csView.state().edits.omit_struts.length === 0);
+  assert.match(fs.readFileSync(scad, 'utf8'), /^omit_struts = \[\];/m, 'the second click undoes it in the file');
+  await page.mouse.click(target.at.x, target.at.y);
+  await page.waitForFunction((i) => window.csView.state().edits.omit_struts.includes(i), {}, target.i);
   // 2. From below, click the underside: a support point.
   await page.click('[data-camera=below]');
   await page.click('[data-mode=point]');
