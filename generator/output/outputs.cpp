@@ -193,7 +193,8 @@ std::vector<OutputFile> output_files(const Result& r, const Job& job, const std:
                          return emit_scad(r.supports, job, meta);
                      }});
     files.push_back({"clever_support.scad", [] { return scad_template_library(); }});
-    files.push_back({"clever_support.curaprofile", [&job] { return encode_cura_profile("clever-support supports", job.params); }});
+    for (const CuraPrinterFamily& family : cura_printer_families())
+        files.push_back({family.file, [&job, &family] { return encode_cura_profile(family, job.params); }});
     return files;
 }
 
@@ -256,8 +257,9 @@ std::string human_summary(const Result& r, const std::string& dir) {
     for (const auto& x : r.stages) total += x.seconds;
     s += fmt::format("  time        {:.2f} s\n", total);
     s += fmt::format("  outputs     {}/{}.supported.stl, .supports.stl, .model.stl, .report.json, .scad\n", dir, r.name);
-    s += fmt::format("  print       Cura: open {0}/{1}.3mf (supports print as support; import {0}/clever_support.curaprofile\n"
-                     "              once, see README \"Printing in Cura\"). PrusaSlicer: open {0}/{1}.prusa.3mf.\n"
+    s += fmt::format("  print       Cura: open {0}/{1}.3mf (supports print as support); import {0}/clever_support.curaprofile\n"
+                     "              once (clever_support_creality.curaprofile on an Ender 3/5 or CR-10), see README\n"
+                     "              \"Printing in Cura\". PrusaSlicer: open {0}/{1}.prusa.3mf.\n"
                      "              Any other slicer: {0}/{1}.supported.stl with its own supports off.\n",
                      dir, r.name);
     return s;
