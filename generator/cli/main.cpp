@@ -89,10 +89,9 @@ struct ParamFlags {
         return cfg;
     }
 
-    // preset, then the config file, then flags: later wins.
-    Params resolve() const {
+    // preset, then the config file (`cfg`: load_config), then flags: later wins.
+    Params resolve(const nlohmann::json& cfg) const {
         std::string base = preset;
-        nlohmann::json cfg = load_config();
         if (cfg.contains("preset") && !preset_given) base = cfg["preset"].get<std::string>();
         Params p = known_preset(base);
         if (!cfg.is_null()) {
@@ -107,7 +106,7 @@ struct ParamFlags {
     // The settings of a run (`base`, read from its .scad) with the flags given on top; a --preset
     // or --config given replaces them as in resolve().
     Params resolve_over(Params base) const {
-        if (preset_given || !config.empty()) return resolve();
+        if (preset_given || !config.empty()) return resolve(load_config());
         for (const auto& [row, value] : given) set_param(*row, value, base);
         validate_params(base);
         return base;
@@ -148,9 +147,9 @@ Box3 box_of(const std::vector<double>& v) {
     return b;
 }
 
-// Support blockers and points: the --config file's "block" / "support-point" lists first, then
-// the flags.
-ManualEdits edits_from(const nlohmann::json& cfg, const std::string& config, const std::vector<std::string>& blocks,
+// Support blockers and points: the --config file's "support-blocker" (or, as before,
+// "block") / "support-point" lists first, then the flags.
+ManualEdits edits_from(const nlohmann::json& cfg, const std::string& config, const std::vector<std::string>& blockers,
                        const std::vector<std::string>& points) {
     ManualEdits e;
     auto numbers = [&](const nlohmann::json& item, size_t count, const std::string& key, const std::string& form) {
@@ -162,14 +161,17 @@ ManualEdits edits_from(const nlohmann::json& cfg, const std::string& config, con
             throw ParameterError("--config " + config + ": \"" + key + "\" must hold lists of " + form);
         return v;
     };
-    if (cfg.contains("block"))
-        for (const auto& b : cfg["block"]) e.blockers.push_back(box_of(numbers(b, 6, "block", "[x0, y0, z0, x1, y1, z1]")));
+    for (const char* key : {"support-blocker", "block"})
+        if (cfg.contains(key))
+            for (const auto& b : cfg[key])
+                e.support_blockers.push_back(box_of(numbers(b, 6, key, "[x0, y0, z0, x1, y1, z1]")));
     if (cfg.contains("support-point"))
         for (const auto& q : cfg["support-point"]) {
             auto v = numbers(q, 3, "support-point", "[x, y, z]");
             e.support_points.push_back({v[0], v[1], v[2]});
         }
-    for (const auto& b : blocks) e.blockers.push_back(box_of(numbers_in(b, 6, "--block", "x0,y0,z0,x1,y1,z1 in mm")));
+    for (const auto& b : blockers)
+        e.support_blockers.push_back(box_of(numbers_in(b, 6, "--support-blocker", "x0,y0,z0,x1,y1,z1 in mm")));
     for (const auto& q : points) {
         auto v = numbers_in(q, 3, "--support-point", "x,y,z in mm");
         e.support_points.push_back({v[0], v[1], v[2]});
@@ -223,7 +225,7 @@ struct GenerateArgs {
     double scale = 1;
     std::optional<double> fit;
     bool no_self_intersection_check = false, no_timings = false;
-    std::vector<std::string> part_defines, blocks, support_points;
+    std::vector<std::string> part_defines, support_blockers, support_points;
     std::string compare;  // "", cura or prusa
     bool show_pose = false;
     ParamFlags params;
@@ -302,7 +304,8 @@ void add_generate(CLI::App& app, GenerateArgs& g, RunOptions& o) {
     app.add_option("-D", g.part_defines, "For a .scad input: OpenSCAD's -D name=value, passed when rendering the part (repeatable)")
         ->allow_extra_args(false);
     auto edits_group = "Manual edits (coordinates of <name>.model.stl)";
-    app.add_option("--block", g.blocks, "No support inside this box: x0,y0,z0,x1,y1,z1 (repeatable)")
+    app.add_option("--support-blocker,--block", g.support_blockers,
+                   "No support inside this box: x0,y0,z0,x1,y1,z1 (repeatable)")
         ->allow_extra_args(false)
         ->group(edits_group);
     app.add_option("--support-point", g.support_points, "Also support this point of the model's underside: x,y,z (repeatable)")
@@ -372,7 +375,8 @@ CLI::App* add_apply(CLI::App& app, ApplyArgs& a) {
 void describe_app(CLI::App& app) {
     app.footer("Which file to print (in --out):\n"
                "  Cura:         <name>.3mf        supports marked \"print as support\"; import\n"
-               "                                  clever_support.curaprofile once (README, \"Printing in Cura\")\n"
+               "                                  clever_support.curaprofile once (on an Ender 3/5 or CR-10:\n"
+               "                                  clever_support_creality.curaprofile; README, \"Printing in Cura\")\n"
                "  PrusaSlicer:  <name>.prusa.3mf  supports as a part with support-like settings\n"
                "  Other:        <name>.supported.stl with the slicer's own supports off");
     app.set_version_flag("--version", CS_VERSION);
@@ -504,21 +508,21 @@ Judged judged_run(const CheckArgs& c) {
         j.model = stem + ".model.stl";
         j.supports = stem + ".supports.stl";
         j.params = c.params.resolve_over(edited.job.params);
-        j.left_out = edited.job.edits.blockers;
+        j.left_out = edited.job.edits.support_blockers;
         j.settings_from = c.params.preset_given || !c.params.config.empty() ? "as given" : "read from " + scad;
         if (!c.params.given.empty() && j.settings_from != "as given") j.settings_from += ", flags on top";
     } else {
         if (c.model.empty() || c.supports.empty())
             throw UsageError("check needs a run: `clever-support check out/m/` (its folder or its .scad), or both --model "
                              "and --supports");
-        j.params = c.params.resolve();
+        j.params = c.params.resolve(c.params.load_config());
         j.settings_from = c.params.preset_given || !c.params.config.empty() || !c.params.given.empty()
                               ? "as given"
                               : "the default preset: give the run's folder, or the --preset it was made with";
     }
     if (!c.model.empty()) j.model = c.model;
     if (!c.supports.empty()) j.supports = c.supports;
-    for (const auto& b : edits_from({}, "", c.blocks, {}).blockers) j.left_out.push_back(b);
+    for (const auto& b : edits_from({}, "", c.blocks, {}).support_blockers) j.left_out.push_back(b);
     return j;
 }
 
@@ -617,8 +621,9 @@ int cmd_generate(const GenerateArgs& g, const RunOptions& o) {
     job.orient = g.orient;
     job.self_intersection_check = !g.no_self_intersection_check;
     job.timings = !g.no_timings;
-    job.params = g.params.resolve();
-    job.edits = edits_from(g.params.load_config(), g.params.config, g.blocks, g.support_points);
+    const nlohmann::json config = g.params.load_config();  // read once: parameters and edits
+    job.params = g.params.resolve(config);
+    job.edits = edits_from(config, g.params.config, g.support_blockers, g.support_points);
     const Result r = run_showing_progress(job, o);
     const std::string dir = g.out_dir.empty() ? "out/" + r.name : g.out_dir;
     const int code = finish_run(r, job, dir, o);
@@ -642,7 +647,7 @@ int cmd_regrow(const RegrowArgs& a, const RunOptions& o) {
     if (!o.quiet && r.input_sha256 != edited.input_sha256)
         std::fprintf(stderr, "clever-support: note: %s changed since %s was written; the supports follow it as it is now\n",
                      job.input.c_str(), file.c_str());
-    bool placed_edits = !job.edits.blockers.empty() || !job.edits.support_points.empty();
+    bool placed_edits = !job.edits.support_blockers.empty() || !job.edits.support_points.empty();
     if (placed_edits && pose_numbers(r.placement) != edited.pose)
         r.warnings.push_back("the model is placed differently than when " + file +
                              " was written (the part, its scale or the orientation changed): check that the support "
@@ -738,7 +743,7 @@ int main(int argc, char** argv) {
                  "  clever-support check out/m/                     # the run's meshes, settings and blockers\n"
                  "  clever-support apply out/m/m.scad -D k=0.003    # a tweak into the STLs and 3MFs\n"
                  "  clever-support --compare prusa part.stl         # and PrusaSlicer's own supports beside ours\n"
-                 "  clever-support part.scad -D width=30 --block 0,0,0,10,10,20\n"
+                 "  clever-support part.scad -D width=30 --support-blocker 0,0,0,10,10,20\n"
                  "  clever-support regrow out/m/m.scad              # after editing it\n",
                  "clever-support"};
     CommandLine cl;

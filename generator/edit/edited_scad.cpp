@@ -122,7 +122,7 @@ ManualEdits read_edits(const Reader& r, int struts) {
         Box3 box;
         box.add(a);
         box.add(c);
-        e.blockers.push_back(box);
+        e.support_blockers.push_back(box);
     }
     const auto& points = r.list("support_points");
     for (size_t i = 0; i < points.value.size(); ++i)

@@ -166,12 +166,22 @@ async function main() {
   // 1. Click the strut: omitted.
   await page.mouse.click(target.at.x, target.at.y);
   await page.waitForFunction((i) => window.csView.state().edits.omit_struts.includes(i), {}, target.i);
+  // Click the (now faint) strut again: kept; and once more: omitted.
+  await page.mouse.click(target.at.x, target.at.y);
+  await page.waitForFunction(() => window.csView.state().edits.omit_struts.length === 0);
+  assert.match(fs.readFileSync(scad, 'utf8'), /^omit_struts = \[\];/m, 'the second click undoes it in the file');
+  await page.mouse.click(target.at.x, target.at.y);
+  await page.waitForFunction((i) => window.csView.state().edits.omit_struts.includes(i), {}, target.i);
   // 2. From below, click the underside: a support point.
   await page.click('[data-camera=below]');
   await page.click('[data-mode=point]');
   const vp = { w: 1280 - 300, h: 800 };
   const pointAt = await page.evaluate((x, y) => window.csView.undersidePixel({ x, y }), vp.w * 0.65, vp.h * 0.5);
   assert.ok(pointAt, 'the underside is visible from below');
+  await page.mouse.move(pointAt.x, pointAt.y);
+  const where = await page.$eval('#tip', (e) => e.textContent);
+  assert.match(where, /^x -?[\d.]+ {2}y -?[\d.]+ {2}z [\d.]+ mm$/, 'hovering the model shows placed coordinates');
+  say(`hover on the model: "${where}"`);
   await page.mouse.click(pointAt.x, pointAt.y);
   await page.waitForFunction(() => window.csView.state().edits.support_points.length === 1 ||
     !document.getElementById('message').hidden);
@@ -231,6 +241,12 @@ async function main() {
   assert.equal(stage, 'regrown', `regrow finished (${message})`);
   say('regrown from the page');
   assert.deepEqual(errors, [], 'no errors in the page');
+  // check's verdict on the regrown supports, as colour: the overhang the edits left bare in red.
+  const judged = await page.evaluate(() => window.csView.state().check);
+  assert.equal(judged.coverage_ok, false, 'the omitted branch and the blocked underside are bare');
+  assert.ok(judged.uncovered.length > 0, 'with places to mark in red');
+  const red = await page.evaluate(() => window.csView.markCount());
+  assert.ok(red.beyond >= judged.uncovered.length, `the places are drawn (${red.beyond} red marks)`);
 
   // The .scad holds the three edits (regrow keeps them).
   const text = fs.readFileSync(scad, 'utf8');

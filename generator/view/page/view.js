@@ -353,7 +353,8 @@ let down = null, dragBox = null;
 const canvas = renderer.domElement;
 canvas.addEventListener('pointermove', (ev) => {
   if (down && mode === 'blocker' && down.hit) return dragBlocker(ev);
-  const hit = pick(ev.clientX, ev.clientY, pickables());
+  // Adding points: the model point the click would take, through the struts.
+  const hit = pick(ev.clientX, ev.clientY, mode === 'point' ? [modelMesh] : pickables());
   setHover(strutOf(hit));
   const text = describe(hit);
   const tip = $('tip');
@@ -503,6 +504,12 @@ window.csView = {
         if (!best || d < best.d) best = { x, y, d };
       }
     return best;
+  },
+  // What drawMarks drew, by colour.
+  markCount() {
+    const count = (hex) => layers.marks.children.filter((m) => m.material && m.material.color &&
+      m.material.color.getHex() === hex && m.geometry.type === 'SphereGeometry').length;
+    return { beyond: count(COLOURS.beyond), flagged: count(COLOURS.flagged), points: count(COLOURS.point) };
   },
   // How many pixels of the picture are model grey and support orange.
   colourCounts() {
