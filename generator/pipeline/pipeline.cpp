@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -229,6 +230,30 @@ std::vector<Sample> edited_samples(const ModelQuery& model, std::vector<Sample> 
     return samples;
 }
 
+// A private folder (mode 0700) in the system's temporary directory (TMPDIR, else /tmp), removed
+// with everything in it when the object goes: on every path out of the function that made it.
+struct TempFolder {
+    std::filesystem::path path;
+    explicit TempFolder(const std::string& for_input) {
+        std::error_code ec;
+        std::filesystem::path base = std::filesystem::temp_directory_path(ec);
+        if (ec)
+            throw InputError(for_input + ": cannot render it: the temporary folder is not a folder (" + ec.message() +
+                             "). Set TMPDIR to a writable folder.");
+        std::string tmpl = (base / "clever-support-XXXXXX").string();
+        if (!mkdtemp(tmpl.data()))
+            throw InputError(for_input + ": cannot make a temporary folder to render it in (" + tmpl + ": " +
+                             std::strerror(errno) + "). Set TMPDIR to a writable folder.");
+        path = tmpl;
+    }
+    ~TempFolder() {
+        std::error_code ec;
+        std::filesystem::remove_all(path, ec);
+    }
+    TempFolder(const TempFolder&) = delete;
+    TempFolder& operator=(const TempFolder&) = delete;
+};
+
 bool is_scad_input(const std::string& path) { return path.size() > 5 && path.substr(path.size() - 5) == ".scad"; }
 
 Mesh load_input(const std::string& path, const std::vector<std::string>& defines) {
@@ -237,14 +262,10 @@ Mesh load_input(const std::string& path, const std::vector<std::string>& defines
         return read_mesh(path);
     }
     if (!std::ifstream(path)) throw InputError(path + ": cannot open it. Check the path.");
-    char tmpl[] = "/tmp/clever-support-part-XXXXXX";
-    int fd = mkstemp(tmpl);
-    if (fd < 0) throw InputError(path + ": cannot make a temporary file to render it into");
-    close(fd);
-    unlink(tmpl);
+    const TempFolder tmp(path);
     RenderOptions o;
     o.scad = path;
-    o.output = std::string(tmpl) + ".stl";
+    o.output = (tmp.path / "part.stl").string();
     o.defines = defines;
     try {
         render_scad(o);
@@ -253,13 +274,18 @@ Mesh load_input(const std::string& path, const std::vector<std::string>& defines
                          (e.log.empty() ? "" : "\nOpenSCAD said:\n" + e.log));
     }
     try {
-        Mesh m = read_mesh(o.output);
-        unlink(o.output.c_str());
-        return m;
+        return read_mesh(o.output);
     } catch (const InputError& e) {
-        unlink(o.output.c_str());
         throw InputError(path + ": OpenSCAD rendered no usable solid (" + e.what() + ")");
     }
+}
+
+std::vector<std::string> job_stages(const Job& job) {
+    std::vector<std::string> stages = {"load", "repair"};
+    if (job.self_intersection_check) stages.push_back("self-intersections");
+    for (const char* s : {"orient", "model index", "overhangs", "coverage top-up", "tree", "struts", "columns baseline"})
+        stages.push_back(s);
+    return stages;
 }
 
 Result run_job(const Job& job, const std::function<void(const std::string&)>& progress) {

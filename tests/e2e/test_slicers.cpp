@@ -122,7 +122,7 @@ PrusaSlice prusa_slice(const TempDir& d, const std::string& input, const std::st
 }
 
 TEST(Slicers, PrusaSlicerPrintsTheSupportsVolumeLikeSupport) {
-    if (!have("prusa-slicer")) GTEST_SKIP() << "prusa-slicer is not installed (scripts/install-deps.sh installs it)";
+    if (!have("prusa-slicer")) CS_SKIP_OR_FAIL_IN_CI("prusa-slicer is not installed (scripts/install-deps.sh installs it)");
     Tee tee;
     Mesh model = read_mesh(tee.stem + ".model.stl"), supports = read_mesh(tee.stem + ".supports.stl");
     ASSERT_FALSE(supports.faces.empty());
@@ -164,7 +164,7 @@ TEST(Slicers, PrusaSlicerPrintsTheSupportsVolumeLikeSupport) {
     // cross-section on every layer it spans (PrusaSlicer centres the object on its default
     // 200 x 200 mm bed). Placed 1.5 mm off, most cross-sections come out empty: the count is not
     // vacuous.
-    if (!have("python3")) GTEST_SKIP() << "python3 is needed for bench/slicers/printed_bodies.py";
+    if (!have("python3")) CS_SKIP_OR_FAIL_IN_CI("python3 is needed for bench/slicers/printed_bodies.py");
     auto printed = [&](double bed_x) {
         auto r = run("python3 " + quote(source_dir() + "/bench/slicers/printed_bodies.py") + " " +
                      quote(tee.dir / "ours.gcode") + " " + quote(tee.stem + ".supports.stl") + " " +
@@ -202,9 +202,9 @@ GcodeExtrusion cura_slice(const TempDir& d, const std::string& tag, const std::s
 }
 
 TEST(Slicers, CuraEnginePrintsTheSupportMeshAsSupport) {
-    if (!have("CuraEngine")) GTEST_SKIP() << "CuraEngine is not installed (scripts/install-deps.sh installs it)";
-    if (!have("python3")) GTEST_SKIP() << "python3 is needed for bench/slicers/slice.py";
-    if (cura_defs_dir().empty()) GTEST_SKIP() << "Cura's machine definitions are not available (bench/slicers/fetch_cura_defs.sh)";
+    if (!have("CuraEngine")) CS_SKIP_OR_FAIL_IN_CI("CuraEngine is not installed (scripts/install-deps.sh installs it)");
+    if (!have("python3")) CS_SKIP_OR_FAIL_IN_CI("python3 is needed for bench/slicers/slice.py");
+    if (cura_defs_dir().empty()) CS_SKIP_OR_FAIL_IN_CI("Cura's machine definitions are not available (bench/slicers/fetch_cura_defs.sh)");
     Tee tee;
     std::string model = quote(tee.stem + ".model.stl"), supports = quote(tee.stem + ".supports.stl");
     auto alone = cura_slice(tee.dir, "alone", "none", model);
