@@ -9,7 +9,7 @@
 
 #include "core/rules.hpp"
 #include "query/model_query.hpp"
-#include "struts/placement.hpp"
+#include "tree/placement.hpp"
 #include "tree/candidates.hpp"
 #include "tree/clearance.hpp"
 #include "tree/tuning.hpp"
@@ -209,7 +209,7 @@ private:
         }
     }
 
-    // Under a low overhang a pillar, placed by its whole footprint (struts/placement.hpp); where
+    // Under a low overhang a pillar, placed by its whole footprint (tree/placement.hpp); where
     // none fits the print bridges the slot (too low) or the sample is given up (too tight).
     PillarFit hang_pillar(const Vec3& sample) {
         auto placed = fit_pillar(model_, sample, p_);

@@ -12,7 +12,7 @@
 #include "edit/scad_values.hpp"
 #include "mesh/mesh_io.hpp"
 #include "core/errors.hpp"
-#include "output/render.hpp"
+#include "render/render.hpp"
 #include "support.hpp"
 #include "../unit/shapes.hpp"
 
