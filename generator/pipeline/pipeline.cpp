@@ -344,7 +344,7 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         r.samples.topped_up = extra.size();
         r.samples.samples.insert(r.samples.samples.end(), extra.begin(), extra.end());
         sort_top_down(r.samples.samples);
-        hung = hang_leaves(*query, r.samples.samples, p);  // the new samples' leaves, in sample order
+        hung = hang_more_leaves(*query, std::move(hung), extra, p);  // the new samples' leaves, in sample order
     }
     // The tree and the columns baseline start from the same leaves (hanging them does not depend
     // on the strategy).

@@ -124,5 +124,9 @@ SupportTree grow_tree(const ModelQuery& model, SupportTree hung, const Params& p
 // holds the overhang up is known from this alone, so the coverage top-up judges it without
 // growing a tree it would grow again.
 SupportTree hang_leaves(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p);
+// `hung` (from hang_leaves for some samples) with the leaves of `more` hung into it: the same tree
+// as hang_leaves for all of them, node for node, at the cost of the new samples alone (the
+// coverage top-up adds a few samples to thousands).
+SupportTree hang_more_leaves(const ModelQuery& model, SupportTree hung, std::vector<Sample> more, const Params& p);
 
 }  // namespace cs

@@ -74,10 +74,10 @@ std::vector<std::pair<std::string, Want>> every_config_key() {
 TEST(Config, EveryWrongTypedValueIsAParameterErrorNamingTheKey) {
     TempDir d;
     // One value of each JSON type; each key's own type's value is left out. None is a list of
-    // number lists of the right length, and 1e999 (infinite) is not a number either.
+    // number lists of the right length.
     const std::vector<std::pair<std::string, Want>> values = {
         {"5", Want::number},   {"\"x\"", Want::text}, {"true", Want::boolean},  {"{}", Want::lists},
-        {"null", Want::lists}, {"[[1, 2]]", Want::lists}, {"[5]", Want::lists}, {"1e999", Want::lists}};
+        {"null", Want::lists}, {"[[1, 2]]", Want::lists}, {"[5]", Want::lists}};
     int runs = 0;
     for (const auto& [key, want] : every_config_key())
         for (const auto& [value, type] : values) {
