@@ -32,7 +32,7 @@ using namespace cs;
 
 namespace {
 
-const std::vector<std::string> kFormats = {"stl", "obj", "off", "ply", "config", "scad"};
+const std::vector<std::string> kFormats = {"stl", "obj", "off", "ply", "3mf", "config", "scad"};
 
 // What the fuzz target of `format` does with `bytes` (fuzz/*.cpp); throws what it rejects with.
 void feed(const std::string& format, const std::string& bytes, const std::string& name) {
