@@ -209,12 +209,17 @@ void check_shape(const Shell& s, const Params& p, const CheckOptions& o, CheckRe
     const double w = std::min(s.top_width, s.bottom_width), length = distance(s.top, s.bottom);
     if (w <= 0) return;
     r.worst_length_to_width = std::max(r.worst_length_to_width, length / w);
+    // The slicer prints whole layers: the part-layer at each end of a solid prints fused into the
+    // joint, foot or tip it meets, so its free length is known to a layer, and the judge gives it
+    // that layer (a strut sized to the rule's very limit is not failed for its end caps).
+    const double free_length = std::max(0.0, length - p.layer_height);
     const double allowed = allowed_length_to_width(p, w, angle);
-    if (length / w > allowed) {
+    if (free_length / w > allowed) {
         ++r.weak_bodies;
         char b[160];
-        std::snprintf(b, sizeof b, " is %.1f mm long and %.2f mm wide (%.1f times its width; the strength rule allows %.1f)",
-                      length, w, length / w, allowed);
+        std::snprintf(b, sizeof b,
+                      " is %.1f mm long and %.2f mm wide (%.1f times its width, a layer less; the strength rule allows %.1f)",
+                      length, w, free_length / w, allowed);
         flag(r, solid_name(s) + b, s.bottom);
     }
 }

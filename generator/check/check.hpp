@@ -28,9 +28,10 @@
 //               as buried, not only as resting on nothing.
 //  closed       every solid is closed and outward-facing.
 //  angles       every solid's axis is within the critical angle of vertical.
-//  strength     no solid is longer for its width than the strength rule allows: length / width
-//               at most strength_length * width * slant(angle) (check.cpp says where that comes
-//               from); the worst ratio is reported.
+//  strength     no solid is longer for its width than the strength rule allows: its length less
+//               a layer (its end caps print fused into what they meet), over its width, at most
+//               strength_length * width * slant(angle) (check.cpp says where that comes from);
+//               the worst length-to-width ratio is reported.
 //
 // The model is judged as written (`<name>.model.stl`, what the user's slicer gets): vertices are
 // welded, nothing else. No hole is filled and no fold unfolded: the generator's repair is not the
