@@ -14,7 +14,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);
     try {
-        cs::EditedScad e = cs::parse_edited_scad(text, "fuzz/fuzz.scad");
+        cs::EditedScad e = cs::read_edited_scad_text(text, "fuzz/fuzz.scad");
         (void)e;
     } catch (const cs::InputError&) {
         // Expected for junk input.

@@ -18,7 +18,7 @@ std::vector<double> numbers(const nlohmann::json& item, size_t count, const std:
     return v;
 }
 
-// A list of number lists: "block" and "support-point".
+// A list of number lists: "support-blocker" ("block") and "support-point".
 std::vector<std::vector<double>> number_lists(const nlohmann::json& list, size_t count, const std::string& what,
                                               const std::string& form) {
     if (!list.is_array()) throw ParameterError(what + " must be a list of " + form);
@@ -45,13 +45,14 @@ ConfigFile parse_config(std::string_view text_in, const std::string& where) {
     auto key = [&](const char* k) { return where + ": \"" + k + "\""; };
     if (c.values.contains("preset")) c.preset = text(c.values["preset"], key("preset"));
     if (c.values.contains("description")) text(c.values["description"], key("description"));
-    if (c.values.contains("block"))
-        for (const auto& v : number_lists(c.values["block"], 6, key("block"), "[x0, y0, z0, x1, y1, z1]")) {
-            Box3 b;
-            b.add({v[0], v[1], v[2]});
-            b.add({v[3], v[4], v[5]});
-            c.blockers.push_back(b);
-        }
+    for (const char* name : {"support-blocker", "block"})  // "block" is the old name
+        if (c.values.contains(name))
+            for (const auto& v : number_lists(c.values[name], 6, key(name), "[x0, y0, z0, x1, y1, z1]")) {
+                Box3 b;
+                b.add({v[0], v[1], v[2]});
+                b.add({v[3], v[4], v[5]});
+                c.blockers.push_back(b);
+            }
     if (c.values.contains("support-point"))
         for (const auto& v : number_lists(c.values["support-point"], 3, key("support-point"), "[x, y, z]"))
             c.support_points.push_back({v[0], v[1], v[2]});

@@ -3,7 +3,8 @@
 // that row's type, or one of
 //   "preset"         a preset name (a string)
 //   "description"    free text (a string)
-//   "block"          a list of support blockers, each [x0, y0, z0, x1, y1, z1] (mm)
+//   "support-blocker" a list of support blockers, each [x0, y0, z0, x1, y1, z1] (mm); "block"
+//                    is its old name
 //   "support-point"  a list of points to support, each [x, y, z] (mm)
 // Anything else, or any value of the wrong type, is a ParameterError naming `where` and the key
 // (exit 2), never a JSON library exception.
@@ -28,7 +29,7 @@ namespace cs {
 struct ConfigFile {
     std::optional<std::string> preset;  // the preset it names, if any
     nlohmann::json values;              // the whole object, every value of its key's type
-    std::vector<Box3> blockers;         // "block"
+    std::vector<Box3> blockers;         // "support-blocker" and "block"
     std::vector<Vec3> support_points;   // "support-point"
 };
 

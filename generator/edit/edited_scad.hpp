@@ -22,4 +22,7 @@ EditedScad read_edited_scad(const std::string& path);
 // The same from the file's text (`path` names it in messages and gives the output folder).
 EditedScad parse_edited_scad(const std::string& text, const std::string& path);
 
+// The same from the file's text (e.g. an edit not yet written): errors name `path` and the line.
+EditedScad read_edited_scad_text(const std::string& text, const std::string& path);
+
 }  // namespace cs

@@ -59,7 +59,8 @@ enum class Want { number, boolean, text, lists };
 
 std::vector<std::pair<std::string, Want>> every_config_key() {
     std::vector<std::pair<std::string, Want>> keys = {
-        {"preset", Want::text}, {"description", Want::text}, {"block", Want::lists}, {"support-point", Want::lists}};
+        {"preset", Want::text}, {"description", Want::text}, {"block", Want::lists}, {"support-blocker", Want::lists},
+        {"support-point", Want::lists}};
     for (const ParamRow& row : param_table()) {
         Want w = std::holds_alternative<double Params::*>(row.member)     ? Want::number
                  : std::holds_alternative<Strategy Params::*>(row.member) ? Want::text

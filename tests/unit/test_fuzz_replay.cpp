@@ -1,7 +1,7 @@
 // Replays the fuzz corpora (tests/data/fuzz/<format>/: seeds and the reproducers scripts/fuzz.sh
 // found) in the normal build without libFuzzer, through what each fuzz target calls: a mesh
 // (stl, obj, off, ply) through parse_mesh and repair_mesh, a --config file (config) through
-// parse_config, the preset and the range checks, an edited .scad (scad) through parse_edited_scad.
+// parse_config, the preset and the range checks, an edited .scad (scad) through read_edited_scad_text.
 // Each file must be accepted or rejected with the error its input is promised (InputError for a
 // mesh or a .scad, ParameterError for a config or a .scad value out of range); any other exception
 // fails its test, and a crash kills the test binary, which fails it too. Seeds named seed-* are
@@ -42,7 +42,7 @@ void feed(const std::string& format, const std::string& bytes, const std::string
         apply_config(c.values, p, "--config " + name);
         validate_params(p);
     } else if (format == "scad") {
-        parse_edited_scad(bytes, name);
+        read_edited_scad_text(bytes, name);
     } else {
         Mesh raw = parse_mesh(bytes, format, name);
         RepairReport report;
