@@ -6,6 +6,7 @@
 
 #include "check/judge_overhangs.hpp"
 #include "core/xy_grid.hpp"
+#include "mesh/weld.hpp"
 #include "query/model_query.hpp"
 
 namespace cs {
@@ -80,7 +81,7 @@ double allowed_length_to_width(const Params& p, double width, double angle_deg) 
 // same point, no area, no edge of their own) left out. Nothing else: holes stay open and folds
 // stay folded, since the slicer prints them so; the generator's repair is not the judge's.
 Mesh as_written(const Mesh& m) {
-    Mesh w = weld(m);
+    Mesh w = weld_vertices(m).mesh;
     std::erase_if(w.faces, [](const Triangle& f) { return f[0] == f[1] || f[1] == f[2] || f[2] == f[0]; });
     return w;
 }
