@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Fuzzes the mesh readers (+ repair) with libFuzzer: scripts/fuzz.sh [SECONDS_PER_TARGET=60]
+# Fuzzes what users give the tool with libFuzzer: the mesh readers (+ repair), a --config file and
+# an edited .scad. scripts/fuzz.sh [SECONDS_PER_TARGET=60]
 #
 # Configures build-fuzz/ with clang (-DCS_FUZZ=ON -DCS_TESTS=OFF), builds fuzz_stl, fuzz_obj,
-# fuzz_off, fuzz_ply and fuzz_3mf, and runs each for SECONDS_PER_TARGET on a copy of its seed corpus
+# fuzz_off, fuzz_ply, fuzz_3mf, fuzz_config and fuzz_scad, and runs each for SECONDS_PER_TARGET on a copy of its seed corpus
 # tests/data/fuzz/<format>/ (new corpus entries stay in build-fuzz/run/<format>/corpus, out of the
 # repository). Reproducers of crashes, timeouts, out-of-memory and leaks are copied into
 # tests/data/fuzz/<format>/ as <kind>-<sha1> (crash-, timeout-, oom-, leak-), where
@@ -12,14 +13,15 @@
 # Reproducers already in tests/data/fuzz/ are re-checked first: those that still fail are reported
 # (and kept out of the fuzzing corpus, so they don't stop the run at once); fixed ones are seeds.
 #
-# Exits 1 if any target found something (new or still failing), 0 otherwise.
+# Exits 1 if any target found something (new or still failing) or does not build, 0 otherwise.
+# scripts/test.sh (and so CI) runs it with 30 s per target.
 # Environment: FUZZ_JOBS=N runs N targets at once (default 1); FUZZ_FORMATS="stl ply" limits the
 # formats; extra libFuzzer flags can be given in FUZZ_FLAGS.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
 seconds=${1:-60}
-formats=${FUZZ_FORMATS:-"stl obj off ply 3mf"}
+formats=${FUZZ_FORMATS:-"stl obj off ply 3mf config scad"}
 parallel=${FUZZ_JOBS:-1}
 jobs=$(nproc 2>/dev/null || echo 2)
 limits=(-max_len=65536 -timeout=10 -rss_limit_mb=2048)

@@ -11,13 +11,14 @@
 #   view: cpp-httplib (the server of `clever-support view`), the pinned three.js it serves
 #         (generator/view/package-lock.json), Debian's chromium and the pinned puppeteer-core that
 #         drive it in tests/browser/ (no browser is ever downloaded)
+#   fuzzing: clang + its runtimes (libFuzzer, sanitizers): scripts/test.sh runs scripts/fuzz.sh
 # Set CS_SKIP_RENDER_DEPS=1 to skip the OpenSCAD and slicer parts.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make pkg-config libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev libfmt-dev libgtest-dev
           libcli11-dev nlohmann-json3-dev libtbb-dev libzip-dev libexpat1-dev libcpp-httplib-dev
-          dpkg-dev file)
+          dpkg-dev file clang libclang-rt-14-dev)
 if [ "${CS_SKIP_RENDER_DEPS:-0}" != 1 ]; then
   packages+=(nodejs npm openscad xvfb xauth prusa-slicer cura-engine python3-savitar chromium)
 fi

@@ -2,8 +2,10 @@
 # Installs what is missing, builds, and runs every test (unit, end to end, rendering, bad input),
 # then the same suite again built with AddressSanitizer + UndefinedBehaviorSanitizer
 # (scripts/test-sanitize.sh; about 12 minutes from scratch on 2 cores, seconds when built).
-# Tests that need ../shared/models or OpenSCAD skip with a message when those are absent.
-# CS_SANITIZE=0 scripts/test.sh skips the sanitizer pass (a quicker local loop; CI always runs it).
+# Tests that need ../shared/models, OpenSCAD or a slicer skip with a message when those are absent;
+# with CI=true (as CI sets it) such a test fails instead, so a green CI means the suite ran.
+# Then every fuzz target for 30 s (scripts/fuzz.sh). CS_SANITIZE=0 scripts/test.sh skips the
+# sanitizer pass and CS_FUZZ_SECONDS=0 the fuzzing (a quicker local loop; CI always runs both).
 # Extra arguments go to ctest in both passes (e.g. -R Orient).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,6 +25,14 @@ elif [ "$(id -u)" = 0 ] && [ $# = 0 ]; then
   out=$(cd /tmp && $as_nobody "$OLDPWD/build/tests/unit_tests" --gtest_filter="$filter" 2>&1) || { echo "$out"; exit 1; }
   echo "$out" | tail -n 3
   if echo "$out" | grep -q "SKIPPED"; then echo "$out"; echo "a permission test skipped as nobody"; exit 1; fi
+fi
+# Every fuzz target is built (clang, build-fuzz/) and run for a short budget on its seed corpus, so
+# a fuzz build that breaks, or a finding, fails the run (the corpora are also replayed above, by
+# FuzzCorpus in unit_tests). CS_FUZZ_SECONDS=0 skips it (a quicker local loop; CI always runs it).
+fuzz_seconds=${CS_FUZZ_SECONDS:-30}
+if [ "$fuzz_seconds" != 0 ] && [ $# = 0 ]; then
+    echo "== fuzz targets, ${fuzz_seconds}s each"
+    FUZZ_JOBS=${FUZZ_JOBS:-$jobs} scripts/fuzz.sh "$fuzz_seconds"
 fi
 if [ "${CS_SANITIZE:-1}" != 0 ]; then
     echo "== the same suite under AddressSanitizer + UndefinedBehaviorSanitizer"

@@ -21,6 +21,20 @@ inline std::string shared_models() { return CS_SHARED_MODELS; }
 inline std::string cli() { return CS_CLI; }
 inline bool have_shared_models() { return std::filesystem::exists(shared_models() + "/benchmark.json"); }
 
+// CI sets CI=true; there scripts/install-deps.sh has installed every tool and ../shared is present.
+inline bool in_ci() {
+    const char* ci = std::getenv("CI");
+    return ci && std::string(ci) == "true";
+}
+
+// A test that cannot run (a tool or ../shared/models is absent) skips with the reason; in CI it
+// fails instead, so a green CI means the suite ran. `why` is streamed: "no OpenSCAD".
+#define CS_SKIP_OR_FAIL_IN_CI(why)                                                       \
+    do {                                                                                 \
+        if (::cs::test::in_ci()) FAIL() << why << " (CI=true: a test that cannot run fails)"; \
+        else GTEST_SKIP() << why;                                                        \
+    } while (0)
+
 struct Run {
     int code = -1;
     std::string out;  // stdout and stderr together

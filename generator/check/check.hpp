@@ -31,7 +31,14 @@
 //               as buried, not only as resting on nothing.
 //  closed       every solid is closed and outward-facing.
 //  angles       every solid's axis is within the critical angle of vertical.
-//  strength     the worst length-to-width ratio of any solid (informative).
+//  strength     no solid is longer for its width than the strength rule allows: its length less
+//               a layer (its end caps print fused into what they meet), over its width, at most
+//               strength_length * width * slant(angle) (check.cpp says where that comes from);
+//               the worst length-to-width ratio is reported.
+//
+// The model is judged as written (`<name>.model.stl`, what the user's slicer gets): vertices are
+// welded, nothing else. No hole is filled and no fold unfolded: the generator's repair is not the
+// judge's, and a change to it cannot move a verdict (tests/unit/test_check.cpp, CheckMutantRepair).
 #pragma once
 
 #include <string>
@@ -87,6 +94,7 @@ struct CheckResult {
     std::size_t steep_bodies = 0;
     double max_angle = 0;
     double worst_length_to_width = 0;
+    std::size_t weak_bodies = 0;  // longer for their width than the strength rule allows
     bool model_closed = true;  // with holes, inside is the winding test's fair guess
     std::vector<Flag> flagged;  // first few failures of the solid checks, with places
 
@@ -94,7 +102,7 @@ struct CheckResult {
     bool gap_ok() const { return fused_contacts == 0; }
     bool ok() const {
         return coverage_ok() && gap_ok() && open_bodies == 0 && inward_bodies == 0 && penetrating_bodies == 0 &&
-               buried_bottoms == 0 && ungrounded_bodies == 0 && steep_bodies == 0;
+               buried_bottoms == 0 && ungrounded_bodies == 0 && steep_bodies == 0 && weak_bodies == 0;
     }
     std::string summary() const;
     std::string json() const;

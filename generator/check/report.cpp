@@ -51,8 +51,10 @@ std::string CheckResult::summary() const {
       << " inward-facing solids\n";
     s << mark(steep_bodies == 0) << " angles       " << steep_bodies << " solids steeper than the critical angle (max "
       << mm(max_angle) << " deg)\n";
+    s << mark(weak_bodies == 0) << " strength     " << weak_bodies
+      << " solids longer for their width than the strength rule allows (worst length-to-width ratio "
+      << mm(worst_length_to_width) << ")\n";
     for (const auto& f : flagged) s << "       " << f.what << "\n";
-    s << "     strength     worst length-to-width ratio " << worst_length_to_width << "\n";
     return s.str();
 }
 
@@ -74,6 +76,7 @@ std::string CheckResult::json() const {
     j["closed"] = {{"open", open_bodies}, {"inward", inward_bodies}};
     j["angles"] = {{"steep", steep_bodies}, {"max_deg", max_angle}};
     j["bodies"] = bodies;
+    j["strength"] = {{"weak", weak_bodies}, {"worst_length_to_width", worst_length_to_width}};
     j["worst_length_to_width"] = worst_length_to_width;
     nlohmann::ordered_json fl = nlohmann::ordered_json::array();
     for (const auto& f : flagged) fl.push_back({{"what", f.what}, {"at", xyz(f.at)}});

@@ -22,6 +22,7 @@
 #include "cli/compare.hpp"
 #include "cli/defines.hpp"
 #include "cli/suggest.hpp"
+#include "core/config.hpp"
 #include "core/errors.hpp"
 #include "core/param_table.hpp"
 #include "edit/edited_scad.hpp"
@@ -75,28 +76,21 @@ struct ParamFlags {
             row.member);
     }
 
-    nlohmann::json load_config() const {
-        nlohmann::json cfg;
-        if (config.empty()) return cfg;
-        std::ifstream in(config);
+    // The --config file, read and checked whole (core/config.hpp); empty without --config.
+    ConfigFile load_config() const {
+        if (config.empty()) return {};
+        std::ifstream in(config, std::ios::binary);
         if (!in) throw ParameterError("--config " + config + ": cannot read it");
-        try {
-            cfg = nlohmann::json::parse(in);
-        } catch (const std::exception& e) {
-            throw ParameterError("--config " + config + ": not valid JSON (" + std::string(e.what()) + ")");
-        }
-        if (!cfg.is_object()) throw ParameterError("--config " + config + ": expected a JSON object of parameters");
-        return cfg;
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        return parse_config(text, "--config " + config);
     }
 
     // preset, then the config file (`cfg`: load_config), then flags: later wins.
-    Params resolve(const nlohmann::json& cfg) const {
-        std::string base = preset;
-        if (cfg.contains("preset") && !preset_given) base = cfg["preset"].get<std::string>();
-        Params p = known_preset(base);
-        if (!cfg.is_null()) {
-            apply_config(cfg, p, "--config " + config);
-            p.preset = cfg.value("preset", p.preset) + " + " + config;
+    Params resolve(const ConfigFile& cfg) const {
+        Params p = known_preset(cfg.preset && !preset_given ? *cfg.preset : preset);
+        if (!config.empty()) {
+            apply_config(cfg.values, p, "--config " + config);
+            p.preset = cfg.preset.value_or(p.preset) + " + " + config;
         }
         for (const auto& [row, value] : given) set_param(*row, value, p);
         validate_params(p);
@@ -147,29 +141,12 @@ Box3 box_of(const std::vector<double>& v) {
     return b;
 }
 
-// Support blockers and points: the --config file's "support-blocker" (or, as before,
-// "block") / "support-point" lists first, then the flags.
-ManualEdits edits_from(const nlohmann::json& cfg, const std::string& config, const std::vector<std::string>& blockers,
-                       const std::vector<std::string>& points) {
+// Support blockers and points: the --config file's "support-blocker" (or, as before, "block") /
+// "support-point" lists first, then the flags.
+ManualEdits edits_from(const ConfigFile& cfg, const std::vector<std::string>& blockers, const std::vector<std::string>& points) {
     ManualEdits e;
-    auto numbers = [&](const nlohmann::json& item, size_t count, const std::string& key, const std::string& form) {
-        std::vector<double> v;
-        if (item.is_array())
-            for (const auto& x : item)
-                if (x.is_number()) v.push_back(x.get<double>());
-        if (!item.is_array() || v.size() != count || item.size() != count)
-            throw ParameterError("--config " + config + ": \"" + key + "\" must hold lists of " + form);
-        return v;
-    };
-    for (const char* key : {"support-blocker", "block"})
-        if (cfg.contains(key))
-            for (const auto& b : cfg[key])
-                e.support_blockers.push_back(box_of(numbers(b, 6, key, "[x0, y0, z0, x1, y1, z1]")));
-    if (cfg.contains("support-point"))
-        for (const auto& q : cfg["support-point"]) {
-            auto v = numbers(q, 3, "support-point", "[x, y, z]");
-            e.support_points.push_back({v[0], v[1], v[2]});
-        }
+    e.support_blockers = cfg.blockers;
+    e.support_points = cfg.support_points;
     for (const auto& b : blockers)
         e.support_blockers.push_back(box_of(numbers_in(b, 6, "--support-blocker", "x0,y0,z0,x1,y1,z1 in mm")));
     for (const auto& q : points) {
@@ -522,7 +499,7 @@ Judged judged_run(const CheckArgs& c) {
     }
     if (!c.model.empty()) j.model = c.model;
     if (!c.supports.empty()) j.supports = c.supports;
-    for (const auto& b : edits_from({}, "", c.blocks, {}).support_blockers) j.left_out.push_back(b);
+    for (const auto& b : edits_from({}, c.blocks, {}).support_blockers) j.left_out.push_back(b);
     return j;
 }
 
@@ -550,8 +527,7 @@ nlohmann::ordered_json settings_json(const Judged& j, const CheckResult& r) {
 
 int cmd_check(const CheckArgs& c) {
     const Judged j = judged_run(c);
-    RepairReport rr;
-    Mesh model = repair_mesh(read_mesh(j.model), j.model, rr);
+    Mesh model = read_mesh(j.model);  // judged as written (check/check.hpp)
     Mesh sup = read_mesh(j.supports, /*allow_empty=*/true);
     CheckOptions options = c.options;
     options.left_out = j.left_out;
@@ -569,7 +545,7 @@ int cmd_check(const CheckArgs& c) {
 // run_job with the stages shown as they start: every one with -v, a one-line progress on a
 // terminal, nothing when stderr is a pipe or a file.
 Result run_showing_progress(const Job& job, const RunOptions& o) {
-    const int total_stages = 9;
+    const int total_stages = static_cast<int>(job_stages(job).size());
     int stage_no = 0;
     auto progress = [&](const std::string& stage) {
         int pct = 100 * stage_no++ / total_stages;
@@ -621,9 +597,9 @@ int cmd_generate(const GenerateArgs& g, const RunOptions& o) {
     job.orient = g.orient;
     job.self_intersection_check = !g.no_self_intersection_check;
     job.timings = !g.no_timings;
-    const nlohmann::json config = g.params.load_config();  // read once: parameters and edits
+    const ConfigFile config = g.params.load_config();  // read once: parameters and edits
     job.params = g.params.resolve(config);
-    job.edits = edits_from(config, g.params.config, g.support_blockers, g.support_points);
+    job.edits = edits_from(config, g.support_blockers, g.support_points);
     const Result r = run_showing_progress(job, o);
     const std::string dir = g.out_dir.empty() ? "out/" + r.name : g.out_dir;
     const int code = finish_run(r, job, dir, o);

@@ -1,5 +1,7 @@
 #include "core/param_table.hpp"
 
+#include <cmath>
+
 #include <algorithm>
 #include <fmt/format.h>
 
@@ -111,7 +113,8 @@ void set_param(const ParamRow& row, const ParamValue& value, Params& p) {
 ParamValue param_value_from_json(const ParamRow& row, const nlohmann::json& value, const std::string& where) {
     const std::string what = where + ": \"" + std::string(config_key(row)) + "\"";
     return std::visit(Overload{[&](double Params::*) -> ParamValue {
-                                   if (!value.is_number()) throw ParameterError(what + " must be a number");
+                                   if (!value.is_number() || !std::isfinite(value.get<double>()))
+                                       throw ParameterError(what + " must be a number");
                                    return value.get<double>();
                                },
                                [&](auto yes_no) -> ParamValue {  // bool Params::* or Negated

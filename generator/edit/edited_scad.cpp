@@ -1,7 +1,10 @@
 #include "edit/edited_scad.hpp"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+
+#include <fmt/format.h>
 
 #include "core/errors.hpp"
 #include "core/param_table.hpp"
@@ -54,13 +57,15 @@ public:
             fail(line, what + " must be a point [x, y, z]");
         return {p[0].get<double>(), p[1].get<double>(), p[2].get<double>()};
     }
+    // The range is checked on the number as written: converting first is undefined for a number
+    // no int holds (1e300).
     int index(const nlohmann::json& x, int line, const std::string& what, int count) const {
-        if (!x.is_number() || x.get<double>() != static_cast<int>(x.get<double>()))
+        if (!x.is_number() || !std::isfinite(x.get<double>()) || std::floor(x.get<double>()) != x.get<double>())
             fail(line, what + " must be a whole number");
-        int i = static_cast<int>(x.get<double>());
+        const double i = x.get<double>();
         if (i < 0 || i >= count)
-            fail(line, what + " " + std::to_string(i) + " is out of range (0 to " + std::to_string(count - 1) + ")");
-        return i;
+            fail(line, fmt::format("{} {} is out of range (0 to {})", what, i, count - 1));
+        return static_cast<int>(i);
     }
 
 private:

@@ -17,7 +17,10 @@ struct EditedScad {
     std::vector<double> pose;   // the placement the edits' coordinates assume (pose_numbers)
 };
 
+// Throws InputError "PATH:LINE: ..." for a malformed file, ParameterError for a value out of range.
 EditedScad read_edited_scad(const std::string& path);
+// The same from the file's text (`path` names it in messages and gives the output folder).
+EditedScad parse_edited_scad(const std::string& text, const std::string& path);
 
 // The same from the file's text (e.g. an edit not yet written): errors name `path` and the line.
 EditedScad read_edited_scad_text(const std::string& text, const std::string& path);

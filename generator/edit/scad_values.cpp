@@ -1,6 +1,8 @@
 #include "edit/scad_values.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
@@ -20,10 +22,11 @@ public:
             int line = line_;
             std::string name = identifier();
             skip_space();
-            if (name.empty() || !eat('=')) {  // not an assignment: the code after the data
+            if (name == "include" || name == "use") {  // the code after the data
                 pos_ = start;
                 break;
             }
+            if (name.empty() || !eat('=')) not_an_assignment(start, line);
             ScadValue v;
             v.line = line;
             skip_space();
@@ -42,6 +45,16 @@ public:
 private:
     [[noreturn]] void fail(const std::string& what, int line = -1) const {
         throw InputError(file_ + ":" + std::to_string(line < 0 ? line_ : line) + ": " + what);
+    }
+
+    // A statement before the code that is not `name = value;`: an error at its own line (a stray
+    // line left by an edit would otherwise end the data early, and a value after it go missing).
+    [[noreturn]] void not_an_assignment(size_t start, int line) const {
+        size_t end = s_.find('\n', start);
+        std::string text = s_.substr(start, std::min<size_t>(end == std::string::npos ? s_.size() - start : end - start, 40));
+        fail("expected an assignment `name = value;` here, found `" + text +
+                 "` (a line left over from an edit? OpenSCAD cannot read it either)",
+             line);
     }
 
     bool eat(char c) {
@@ -102,6 +115,7 @@ private:
         char* end = nullptr;
         double v = std::strtod(begin, &end);
         if (end == begin) fail("malformed number");
+        if (!std::isfinite(v)) fail("a number must be finite (OpenSCAD reads no inf or nan)");
         pos_ += static_cast<size_t>(end - begin);
         skip_space();
         if (pos_ < s_.size() && s_[pos_] != ',' && s_[pos_] != ']' && s_[pos_] != ';')

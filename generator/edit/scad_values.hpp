@@ -1,8 +1,9 @@
 // Reading back the plain values of an OpenSCAD file that clever-support wrote and a person may
 // have edited: top-level assignments `name = value;` whose value is a literal (number, true/false,
 // string, undef, or a list of those, nested). Comments are skipped; so are assignments whose value
-// refers to other names (e.g. `cs_tree_record = [cs_nodes, ...]`). Reading stops at the first
-// statement that is not an assignment (`include <...>`, a module call): the data comes before it.
+// refers to other names (e.g. `cs_tree_record = [cs_nodes, ...]`). Reading stops at `include` or
+// `use`: the data comes before the code. Any other statement before it that is not an assignment
+// (a stray line left by an edit) is an error at its own line.
 #pragma once
 
 #include <map>
@@ -23,7 +24,8 @@ struct ScadValue {
 using ScadValues = std::map<std::string, ScadValue>;
 
 // Throws InputError "FILE:LINE: what is wrong" for a malformed value (an unclosed list, a missing
-// comma, an expression where a plain value belongs, a name assigned twice).
+// comma, an expression where a plain value belongs, a number that is not finite, a name assigned
+// twice) or a statement that is not an assignment.
 ScadValues parse_scad_values(const std::string& text, const std::string& file);
 
 // A plain value as OpenSCAD source, the inverse of the parse: numbers shortest (%.10g), strings in

@@ -207,6 +207,22 @@ std::vector<OutputFile> output_files(const Result& r, const Job& job, const std:
     return files;
 }
 
+namespace {
+
+// A file's bytes; a file that fails to encode (the 3MF packer) is an OutputError naming it.
+std::string encoded(const OutputFile& f, const std::string& dir) {
+    try {
+        return f.content();
+    } catch (const std::bad_alloc&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw OutputError(dir + "/" + f.name + ": cannot encode it (" + e.what() +
+                          "). Nothing was written; please report this with the input file.");
+    }
+}
+
+}  // namespace
+
 void write_outputs(const std::string& dir, const std::vector<OutputFile>& files) {
     create_output_dir(dir);
     std::vector<std::string> temps;
@@ -217,11 +233,14 @@ void write_outputs(const std::string& dir, const std::vector<OutputFile>& files)
         for (const auto& f : files) {
             std::string tmp = dir + "/." + f.name + ".partial";
             temps.push_back(tmp);
-            write_file_atomic(tmp, f.content());
+            write_file_atomic(tmp, encoded(f, dir));
         }
     } catch (const OutputError& e) {
         cleanup();
         throw OutputError(std::string(e.what()).replace(0, 0, "writing outputs: "));
+    } catch (...) {  // out of memory: nothing half-written either
+        cleanup();
+        throw;
     }
     // Swap the set in: old files step aside first, so a failure half-way puts everything back.
     std::vector<std::string> finals, backups;

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <zip.h>
 
+#include "core/errors.hpp"
 #include "core/rules.hpp"
 #include "mesh/weld.hpp"
 
@@ -156,7 +157,7 @@ std::string encode_zip(std::vector<std::pair<std::string, std::string>> entries)
     auto fail = [](const char* what, zip_error_t* err) {
         std::string msg = fmt::format("3MF packaging failed ({}): {}", what, zip_error_strerror(err));
         zip_error_fini(err);
-        throw std::runtime_error(msg);
+        throw OutputError(msg);
     };
     zip_error_t err;
     zip_error_init(&err);
@@ -198,7 +199,7 @@ std::string encode_zip(std::vector<std::pair<std::string, std::string>> entries)
     }
     zip_source_free(buffer);
     zip_error_fini(&err);
-    if (out.empty()) throw std::runtime_error("3MF packaging failed: the archive could not be read back from memory");
+    if (out.empty()) throw OutputError("3MF packaging failed: the archive could not be read back from memory");
     return out;
 }
 

@@ -92,7 +92,7 @@ std::string encode_3mf_cura(const std::string& name, const std::vector<NamedMesh
 std::string encode_3mf_prusa(const std::string& name, const std::vector<NamedMesh>& parts);
 
 // A ZIP archive of the given (name, content) entries, each deflated, written by libzip.
-// Entries are taken by value: move large ones in. Throws std::runtime_error if libzip fails.
+// Entries are taken by value: move large ones in. Throws OutputError if libzip fails.
 std::string encode_zip(std::vector<std::pair<std::string, std::string>> entries);
 
 }  // namespace cs

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -323,20 +324,40 @@ std::vector<Sample> edited_samples(const ModelQuery& model, std::vector<Sample> 
     return samples;
 }
 
+// A private folder (mode 0700) in the system's temporary directory (TMPDIR, else /tmp), removed
+// with everything in it when the object goes: on every path out of the function that made it.
+struct TempFolder {
+    std::filesystem::path path;
+    explicit TempFolder(const std::string& for_input) {
+        std::error_code ec;
+        std::filesystem::path base = std::filesystem::temp_directory_path(ec);
+        if (ec)
+            throw InputError(for_input + ": cannot render it: the temporary folder is not a folder (" + ec.message() +
+                             "). Set TMPDIR to a writable folder.");
+        std::string tmpl = (base / "clever-support-XXXXXX").string();
+        if (!mkdtemp(tmpl.data()))
+            throw InputError(for_input + ": cannot make a temporary folder to render it in (" + tmpl + ": " +
+                             std::strerror(errno) + "). Set TMPDIR to a writable folder.");
+        path = tmpl;
+    }
+    ~TempFolder() {
+        std::error_code ec;
+        std::filesystem::remove_all(path, ec);
+    }
+    TempFolder(const TempFolder&) = delete;
+    TempFolder& operator=(const TempFolder&) = delete;
+};
+
 Mesh load_input(const std::string& path, const std::vector<std::string>& defines, std::string* contents) {
     if (!is_scad_input(path)) {
         if (!defines.empty()) throw ParameterError("-D applies to a .scad input only, not " + path);
         return read_mesh(path, false, contents);
     }
     if (!std::ifstream(path)) throw InputError(path + ": cannot open it. Check the path.");
-    char tmpl[] = "/tmp/clever-support-part-XXXXXX";
-    int fd = mkstemp(tmpl);
-    if (fd < 0) throw InputError(path + ": cannot make a temporary file to render it into");
-    close(fd);
-    unlink(tmpl);
+    const TempFolder tmp(path);
     RenderOptions o;
     o.scad = path;
-    o.output = std::string(tmpl) + ".stl";
+    o.output = (tmp.path / "part.stl").string();
     o.defines = defines;
     try {
         render_scad(o);
@@ -345,13 +366,18 @@ Mesh load_input(const std::string& path, const std::vector<std::string>& defines
                          (e.log.empty() ? "" : "\nOpenSCAD said:\n" + e.log));
     }
     try {
-        Mesh m = read_mesh(o.output);
-        unlink(o.output.c_str());
-        return m;
+        return read_mesh(o.output);
     } catch (const InputError& e) {
-        unlink(o.output.c_str());
         throw InputError(path + ": OpenSCAD rendered no usable solid (" + e.what() + ")");
     }
+}
+
+std::vector<std::string> job_stages(const Job& job) {
+    std::vector<std::string> stages = {"load", "repair"};
+    if (job.self_intersection_check) stages.push_back("self-intersections");
+    for (const char* s : {"orient", "model index", "overhangs", "coverage top-up", "tree", "struts", "columns baseline"})
+        stages.push_back(s);
+    return stages;
 }
 
 Result run_job(const Job& job, const std::function<void(const std::string&)>& progress) {
@@ -412,7 +438,7 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         r.samples.topped_up = extra.size();
         r.samples.samples.insert(r.samples.samples.end(), extra.begin(), extra.end());
         sort_top_down(r.samples.samples);
-        hung = hang_leaves(*query, r.samples.samples, p, blockers);  // the new samples' leaves, in sample order
+        hung = hang_more_leaves(*query, std::move(hung), extra, p, blockers);  // the new samples' leaves, in sample order
     }
     // The tree and the columns baseline start from the same leaves (hanging them does not depend
     // on the strategy).

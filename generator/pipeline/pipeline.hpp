@@ -22,6 +22,10 @@ class ModelQuery;
 // `progress` (may be empty) is told each stage's name as it starts.
 Result run_job(const Job& job, const std::function<void(const std::string&)>& progress = {});
 
+// The names run_job tells `progress`, in order, for this job (the progress line counts them).
+// Example: job_stages(job).size() is 10 with the self-intersection count, 9 without.
+std::vector<std::string> job_stages(const Job& job);
+
 // Builds supports for an already placed model (used by run_job and orientation scoring).
 Supports build_supports(const Mesh& placed, const std::vector<Sample>& samples, const Params& p);
 // The same, with an index of the placed model already built; struts in `omit` (indices into the

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <optional>
 #include <queue>
 #include <tuple>
@@ -571,6 +572,32 @@ SupportTree grow_tree(const ModelQuery& model, SupportTree hung, const Params& p
 SupportTree hang_leaves(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
                         const std::vector<Box3>& support_blockers) {
     return Sweep(model, p, support_blockers).hang_only(samples);
+}
+
+SupportTree hang_more_leaves(const ModelQuery& model, SupportTree hung, std::vector<Sample> more, const Params& p,
+                             const std::vector<Box3>& support_blockers) {
+    // Each sample hangs by itself (its leaf, pillar or reason depends on the model alone) and
+    // hung trees list them in sample order: merged by the samples' order (sort_top_down's), the
+    // lists are what hanging every sample again would give, node for node.
+    sort_top_down(more);
+    SupportTree added = hang_leaves(model, more, p, support_blockers);
+    auto before = [](const Vec3& a, const Vec3& b) {
+        if (a.z != b.z) return a.z > b.z;
+        if (a.x != b.x) return a.x < b.x;
+        return a.y < b.y;
+    };
+    SupportTree out;
+    std::merge(hung.nodes.begin(), hung.nodes.end(), added.nodes.begin(), added.nodes.end(), std::back_inserter(out.nodes),
+               [&](const Node& a, const Node& b) { return before(a.contact, b.contact); });
+    std::merge(hung.pillars.begin(), hung.pillars.end(), added.pillars.begin(), added.pillars.end(),
+               std::back_inserter(out.pillars), [&](const Pillar& a, const Pillar& b) { return before(a.sample, b.sample); });
+    out.stats = hung.stats;
+    out.stats.internal += added.stats.internal;
+    out.stats.touching += added.stats.touching;
+    out.stats.bridged += added.stats.bridged;
+    out.stats.dropped += added.stats.dropped;
+    out.stats.pillars = out.pillars.size();
+    return out;
 }
 
 }  // namespace cs

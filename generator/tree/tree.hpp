@@ -127,5 +127,10 @@ SupportTree grow_tree(const ModelQuery& model, SupportTree hung, const Params& p
 // growing a tree it would grow again.
 SupportTree hang_leaves(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
                         const std::vector<Box3>& support_blockers = {});
+// `hung` (from hang_leaves for some samples) with the leaves of `more` hung into it: the same tree
+// as hang_leaves for all of them, node for node, at the cost of the new samples alone (the
+// coverage top-up adds a few samples to thousands).
+SupportTree hang_more_leaves(const ModelQuery& model, SupportTree hung, std::vector<Sample> more, const Params& p,
+                             const std::vector<Box3>& support_blockers = {});
 
 }  // namespace cs

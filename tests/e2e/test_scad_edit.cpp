@@ -12,7 +12,6 @@
 #include "check/check.hpp"
 #include "edit/scad_values.hpp"
 #include "mesh/mesh_io.hpp"
-#include "mesh/repair.hpp"
 #include "core/errors.hpp"
 #include "render/render.hpp"
 #include "support.hpp"
@@ -67,9 +66,7 @@ struct Tee {
 };
 
 CheckResult check_of(const std::string& model_stl, const std::string& supports_stl) {
-    RepairReport rr;
-    Mesh model = repair_mesh(read_mesh(model_stl), model_stl, rr);
-    return check_supports(model, read_mesh(supports_stl, true), Params{}, CheckOptions{});
+    return check_supports(read_mesh(model_stl), read_mesh(supports_stl, true), Params{}, CheckOptions{});
 }
 
 // Möller-Trumbore: does the segment a-b cross the triangle?
@@ -269,6 +266,11 @@ TEST(ScadEdit, BrokenEditsNameTheLine) {
         {"support_blockers =", "support_blockers = [[[0, 0], [1, 1, 1]]];", "point [x, y, z]"},
         {"k =", "k = 0.003 * 2;", "plain value"},
         {"  /* 0 onto ", "  /* 0 */ [0, 99999],", "out of range"},
+        // Range checked on the number as written, before it becomes an int.
+        {"omit_struts =", "omit_struts = [1e300];", "out of range"},
+        {"highlight_strut =", "highlight_strut = -3e9;", "out of range"},
+        {"omit_struts =", "omit_struts = [2.5];", "whole number"},
+        {"k =", "k = 1e999;", "finite"},
     };
     for (const auto& c : cases) {
         SCOPED_TRACE(c.line);
@@ -279,6 +281,20 @@ TEST(ScadEdit, BrokenEditsNameTheLine) {
         EXPECT_NE(r.out.find(where), std::string::npos) << "expected " << where << " in: " << r.out;
         EXPECT_NE(r.out.find(c.phrase), std::string::npos) << r.out;
     }
+}
+
+TEST(ScadEdit, AStrayLineIsAnErrorAtItsOwnLine) {
+    // Issue 29, reproduced: `support_blockers = [` shortened to `[];`, the old entry and `];` left
+    // on the next two lines. OpenSCAD says "syntax error" at the first of them; so does regrow.
+    Tee t;
+    const std::string text = read_text(t.scad);
+    write_text(t.scad, with_line(text, "support_blockers =", "support_blockers = [];\n  [[0, 0, 0], [1, 1, 1]]\n];"));
+    auto r = cs("regrow -q " + quote(t.scad));
+    EXPECT_EQ(r.code, 3) << r.out;
+    std::string where = "tee.scad:" + std::to_string(line_number_of(text, "support_blockers =") + 1) + ":";
+    EXPECT_NE(r.out.find(where), std::string::npos) << "expected " << where << " in: " << r.out;
+    EXPECT_NE(r.out.find("expected an assignment"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("is missing"), std::string::npos) << "the wrong problem: " << r.out;
 }
 
 TEST(ScadEdit, MalformedEditFlagsAreUsageErrors) {
@@ -328,11 +344,14 @@ translate([-w / 2, -5, 10]) cube([w, 10, 2]);
 )";
 
 TEST(ScadEdit, ScadInputWithDefinesGivesTheSupportsOfItsExportedStl) {
-    if (!have_openscad()) GTEST_SKIP() << "no OpenSCAD";
+    if (!have_openscad()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
     TempDir d;
     write_text(d / "part.scad", kPart);
-    auto a = cs(quote(d / "part.scad") + " -D w=16 --orient keep --no-timings -q --out " + quote(d / "a"));
+    fs::create_directory(d / "tmp");  // the part is rendered in a private folder in TMPDIR, then removed
+    auto a = run("TMPDIR=" + quote(d / "tmp") + " " + quote(cli()) + " " + quote(d / "part.scad") +
+                 " -D w=16 --orient keep --no-timings -q --out " + quote(d / "a"));
     ASSERT_EQ(a.code, 0) << a.out;
+    EXPECT_TRUE(fs::is_empty(d / "tmp")) << "the temporary render was left in TMPDIR";
     fs::create_directory(d / "stl");
     auto exported = cs("render " + quote(d / "part.scad") + " -D w=16 -o " + quote(d / "stl/part.stl"));
     ASSERT_EQ(exported.code, 0) << exported.out;
@@ -358,12 +377,31 @@ TEST(ScadEdit, ScadInputWithDefinesGivesTheSupportsOfItsExportedStl) {
     EXPECT_NE(read_text(d / "a/part.report.json"), report.dump(2) + "\n");
 }
 
+TEST(ScadEdit, ScadPartThatRendersNothingLeavesNoTemporaryFolder) {
+    if (!have_openscad()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
+    TempDir d;
+    write_text(d / "empty.scad", "w = 1;\n");  // renders, but no solid
+    fs::create_directory(d / "tmp");
+    auto r = run("TMPDIR=" + quote(d / "tmp") + " " + quote(cli()) + " " + quote(d / "empty.scad") + " -q --out " +
+                 quote(d / "o"));
+    EXPECT_EQ(r.code, 3) << r.out;
+    EXPECT_TRUE(fs::is_empty(d / "tmp")) << "an empty render left its temporary folder in TMPDIR";
+    // A TMPDIR that cannot be written is a clear error naming it.
+    auto no = run("TMPDIR=" + quote(d / "missing") + " " + quote(cli()) + " " + quote(d / "empty.scad") + " -q --out " +
+                  quote(d / "o"));
+    EXPECT_EQ(no.code, 3) << no.out;
+    EXPECT_NE(no.out.find("TMPDIR"), std::string::npos) << no.out;
+}
+
 TEST(ScadEdit, ScadPartThatFailsToRenderIsABadInput) {
-    if (!have_openscad()) GTEST_SKIP() << "no OpenSCAD";
+    if (!have_openscad()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
     TempDir d;
     write_text(d / "broken.scad", "cube(1;\n");
-    auto r = cs(quote(d / "broken.scad") + " -q --out " + quote(d / "o"));
+    fs::create_directory(d / "tmp");
+    auto r = run("TMPDIR=" + quote(d / "tmp") + " " + quote(cli()) + " " + quote(d / "broken.scad") + " -q --out " +
+                 quote(d / "o"));
     EXPECT_EQ(r.code, 3) << r.out;
+    EXPECT_TRUE(fs::is_empty(d / "tmp")) << "a failed render left its temporary folder in TMPDIR";
     EXPECT_NE(r.out.find("broken.scad"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("OpenSCAD"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("rror"), std::string::npos) << "OpenSCAD's own message: " << r.out;
@@ -403,7 +441,7 @@ TEST(ScadEdit, EditedScadRendersOnDebian2021AndOnManifold) {
     std::vector<std::string> runners;
     if (have_native()) runners.push_back("openscad");
     if (have_runner()) runners.push_back(runner_command());
-    if (runners.empty()) GTEST_SKIP() << "no OpenSCAD";
+    if (runners.empty()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
     std::vector<double> volumes;
     for (const auto& os : runners) {
         SCOPED_TRACE(os);

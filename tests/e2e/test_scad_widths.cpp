@@ -58,7 +58,7 @@ std::vector<std::array<double, 2>> template_widths(const std::string& dir, const
 }
 
 void expect_same_widths(const std::string& model, const std::string& extra) {
-    if (!have_native()) GTEST_SKIP() << "no OpenSCAD";
+    if (!have_native()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
     TempDir dir;
     auto r = run(quote(cli()) + " " + quote(model) + " --orient keep -q --out " + quote(dir.path) + " " + extra);
     ASSERT_EQ(r.code, 0) << r.out;

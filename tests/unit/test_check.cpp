@@ -385,6 +385,58 @@ TEST(CheckPlanted, AnEmptySupportFileFailsForATableThatNeedsSupport) {
     EXPECT_TRUE(names_a_place(r.summary(), "uncovered at"));
 }
 
+// A thin, long strut standing beside the table: 25 mm long and 0.6 mm wide (42 times its width)
+// where the strength rule allows a 0.6 mm solid 30 * 0.6 = 18 times; the same strut 1.2 mm wide
+// (21 times, 36 allowed) passes.
+TEST(CheckPlanted, AThinLongStrutFailsTheStrengthRuleAndNamesItsPlace) {
+    Table t;
+    std::vector<Body> thin = t.bodies, stout = t.bodies;
+    thin.push_back({BodyKind::Strut, Profile::Square, {30, 0, 0}, {30, 0, 25}, 0.6, 0.6});
+    stout.push_back({BodyKind::Strut, Profile::Square, {30, 0, 0}, {30, 0, 25}, 1.2, 1.2});
+    CheckResult r = t.check(thin);
+    EXPECT_EQ(r.weak_bodies, 1u) << r.summary();
+    EXPECT_FALSE(r.ok());
+    EXPECT_NEAR(r.worst_length_to_width, 25 / 0.6, 0.01);
+    EXPECT_NE(r.summary().find("FAIL strength"), std::string::npos) << r.summary();
+    EXPECT_TRUE(names_a_place(r.summary(), "solid from (30.00, 0.00, 0.00)")) << r.summary();
+    EXPECT_NE(r.summary().find("the strength rule allows 18.0"), std::string::npos) << r.summary();
+    EXPECT_NE(r.json().find("\"weak\": 1"), std::string::npos) << r.json();
+    CheckResult ok = t.check(stout);
+    EXPECT_EQ(ok.weak_bodies, 0u) << ok.summary();
+    EXPECT_TRUE(ok.ok()) << ok.summary();
+    // The rule is the user's: with --strength-length 10 the 1.2 mm strut (12 allowed) fails too.
+    Params weaker = t.p;
+    weaker.strength_length = 10;
+    EXPECT_EQ(check_supports(t.model, bodies_mesh(stout, t.p.wall_thickness), weaker, {}).weak_bodies, 1u);
+}
+
+// The judge reads the model as written: no hole filled, no fold unfolded (check.hpp). A table
+// whose underside has an open corner (x > 2, y > 2: its triangles missing), supported by the
+// pipeline from that same mesh, passes; the closed table, the hole filled as a repair would,
+// needs support in that 18 x 13 mm corner and fails with the same supports. Had check filled
+// holes itself, both would fail; check_mutant_tests runs this against a repair that fills none.
+TEST(CheckPlanted, AHoleInTheModelIsJudgedAsWritten) {
+    Params p;
+    const Mesh closed = cs::test::table_shape();
+    Mesh holed = closed;
+    std::erase_if(holed.faces, [&](const Triangle& f) {
+        for (auto v : f) {
+            const Vec3& q = holed.vertices[v];
+            if (q.z != 10 || q.x < 2 || q.y < 2) return false;
+        }
+        return true;
+    });
+    ASSERT_LT(holed.faces.size(), closed.faces.size());
+    const Mesh supports = bodies_mesh(pipeline_bodies(holed, p), p.wall_thickness);
+    CheckResult as_written = check_supports(holed, supports, p, {});
+    EXPECT_FALSE(as_written.model_closed);
+    EXPECT_TRUE(as_written.coverage_ok()) << as_written.summary();
+    CheckResult filled = check_supports(closed, supports, p, {});
+    EXPECT_FALSE(filled.coverage_ok()) << filled.summary();
+    EXPECT_GT(filled.uncovered_area, 100.0) << filled.summary();
+    for (const auto& u : filled.uncovered) EXPECT_TRUE(u.x >= 2 - 1e-9 && u.y >= 2 - 1e-9) << format_place(u);
+}
+
 // The judge finds a hanging ridge by itself: no face needs support, only the keel's line does.
 TEST(CheckPlanted, AnUnsupportedRidgeFailsAndTheGeneratorsSupportsPass) {
     Params p;

@@ -13,6 +13,7 @@
 #include "core/errors.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/repair.hpp"
+#include "pipeline/pipeline.hpp"
 #include "shapes.hpp"
 #include "support.hpp"
 
@@ -291,6 +292,31 @@ TEST(Cli, RerunIntoTheSameDirectoryReplacesTheOutputs) {
     EXPECT_EQ(entries(out), six_outputs("tee"));  // no temporaries left over
 }
 
+TEST(Cli, VerboseProgressCountsEveryStageOfTheRun) {
+    // -v names each stage with how far the run is: the i-th of n stages at 100 * i / n percent, the
+    // stages those run_job goes through (job_stages), with and without the self-intersection count.
+    TempDir tmp;
+    std::string input = write_good_mesh(tmp);
+    for (bool intersections : {true, false}) {
+        SCOPED_TRACE(intersections);
+        CliRun r = cli(quote(input) + " -v --orient keep --out " + quote(tmp / "out") +
+                       (intersections ? "" : " --no-self-intersection-check"));
+        ASSERT_EQ(r.code, 0) << r.out;
+        std::vector<std::string> names;
+        std::vector<int> percents;
+        const std::regex line(R"(\[ *([0-9]+)%\] ([a-z -]+)\.\.\.)");
+        for (auto it = std::sregex_iterator(r.out.begin(), r.out.end(), line); it != std::sregex_iterator(); ++it) {
+            percents.push_back(std::stoi((*it)[1]));
+            names.push_back((*it)[2]);
+        }
+        Job job;
+        job.self_intersection_check = intersections;
+        EXPECT_EQ(names, job_stages(job)) << r.out;
+        for (size_t i = 0; i < percents.size(); ++i)
+            EXPECT_EQ(percents[i], static_cast<int>(100 * i / percents.size())) << names[i] << " in\n" << r.out;
+    }
+}
+
 // ---------------------------------------------------------------- output failures
 
 TEST(Cli, OutUnderDevFullFailsWithExitSix) {
@@ -326,6 +352,20 @@ TEST(Cli, UnwritableOutputDirectoryFailsWithExitSix) {
     EXPECT_EQ(r.code, kExitOutputFailed) << r.out;
     EXPECT_TRUE(contains(r.out, "cannot create the output directory")) << r.out;
     EXPECT_FALSE(fs::exists("/proc/clever-support-test-out"));
+}
+
+TEST(Cli, ThreeMfThatFailsToEncodeLeavesNothingAndExitsSix) {
+    // libzip fails to pack (tests/fault/failing_zip.cpp, preloaded): the STLs before the 3MF were
+    // already written to temporaries; none may be left, and the failure is an output error.
+    TempDir tmp;
+    std::string input = write_good_mesh(tmp);
+    std::string out = tmp / "out";
+    CliRun r = cs::test::run("LD_PRELOAD=" + quote(CS_FAILING_ZIP) + " ASAN_OPTIONS=verify_asan_link_order=0 " +
+                             quote(cs::test::cli()) + " " + quote(input) + " --orient keep --out " + quote(out));
+    EXPECT_EQ(r.code, kExitOutputFailed) << r.out;
+    EXPECT_TRUE(contains(r.out, "tee.3mf")) << r.out;
+    EXPECT_TRUE(contains(r.out, "3MF packaging failed")) << r.out;
+    EXPECT_TRUE(entries(out).empty()) << "a failed run left files behind";
 }
 
 TEST(Cli, OutputSetIsAllOrNothingWhenOneRenameFails) {

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "core/param_table.hpp"
 #include "mesh/mesh_io.hpp"
 #include "support.hpp"
 
@@ -50,6 +51,46 @@ TEST(Config, WrongTypeAndBrokenJsonAreUsageErrors) {
     EXPECT_EQ(code, 2);
     run_with(d, R"({"sampling": 2)", "", code);
     EXPECT_EQ(code, 2);
+}
+
+// The JSON types a key accepts: a number, a yes/no, a string (preset, description, strategy), or
+// a list of number lists (block, support-point).
+enum class Want { number, boolean, text, lists };
+
+std::vector<std::pair<std::string, Want>> every_config_key() {
+    std::vector<std::pair<std::string, Want>> keys = {
+        {"preset", Want::text}, {"description", Want::text}, {"block", Want::lists}, {"support-blocker", Want::lists},
+        {"support-point", Want::lists}};
+    for (const ParamRow& row : param_table()) {
+        Want w = std::holds_alternative<double Params::*>(row.member)     ? Want::number
+                 : std::holds_alternative<Strategy Params::*>(row.member) ? Want::text
+                                                                          : Want::boolean;
+        keys.emplace_back(std::string(config_key(row)), w);
+    }
+    return keys;
+}
+
+// Every key given a value of every other JSON type ({"preset": 5}, {"sampling": "fine"},
+// {"block": {}} ...) is a parameter error naming the key (exit 2), never an internal error.
+TEST(Config, EveryWrongTypedValueIsAParameterErrorNamingTheKey) {
+    TempDir d;
+    // One value of each JSON type; each key's own type's value is left out. None is a list of
+    // number lists of the right length.
+    const std::vector<std::pair<std::string, Want>> values = {
+        {"5", Want::number},   {"\"x\"", Want::text}, {"true", Want::boolean},  {"{}", Want::lists},
+        {"null", Want::lists}, {"[[1, 2]]", Want::lists}, {"[5]", Want::lists}};
+    int runs = 0;
+    for (const auto& [key, want] : every_config_key())
+        for (const auto& [value, type] : values) {
+            if (type == want && want != Want::lists) continue;
+            std::ofstream(d / "bad.json") << "{\"" << key << "\": " << value << "}";
+            auto r = run(quote(cli()) + " " + quote(d / "none.stl") + " --config " + quote(d / "bad.json"));
+            ++runs;
+            EXPECT_EQ(r.code, 2) << key << ": " << value << " -> " << r.out;
+            EXPECT_NE(r.out.find("\"" + key + "\""), std::string::npos) << key << ": " << value << " -> " << r.out;
+            EXPECT_EQ(r.out.find("internal error"), std::string::npos) << key << ": " << value << " -> " << r.out;
+        }
+    EXPECT_GT(runs, 100);
 }
 
 TEST(Config, PresetsListSaysWhereValuesComeFrom) {

@@ -50,6 +50,24 @@ TEST(ScadValues, MalformedValuesNameTheLine) {
     EXPECT_NE(error_of("a = 1 + 2;\n").find("plain value"), std::string::npos);
 }
 
+TEST(ScadValues, EveryStatementBeforeTheCodeThatIsNotAnAssignmentIsAnErrorAtItsLine) {
+    // Issue 29: `support_blockers = [` shortened to `[];`, the old entry and `];` left below.
+    const std::string stray = "a = 1;\nsupport_blockers = [];\n  [[0, 0, 0], [1, 1, 1]]\n];\ncs_input_path = \"x\";\n";
+    EXPECT_NE(error_of(stray).find("x.scad:3: expected an assignment"), std::string::npos) << error_of(stray);
+    EXPECT_NE(error_of("a = 1;\n\n];\nb = 2;\n").find("x.scad:3: expected an assignment"), std::string::npos);
+    EXPECT_NE(error_of("a = 1;\ncube(1);\ninclude <lib.scad>\n").find("x.scad:2:"), std::string::npos);
+    EXPECT_NE(error_of("a = 1;\nb;\n").find("x.scad:2:"), std::string::npos);
+    EXPECT_EQ(error_of("a = 1;\ninclude <lib.scad>\ncube(1);\n]];\n"), "") << "after the code starts: OpenSCAD's";
+    EXPECT_EQ(error_of("a = 1;\nuse <lib.scad>\ncube(1);\n"), "");
+}
+
+TEST(ScadValues, NumbersMustBeFinite) {
+    EXPECT_NE(error_of("a = 1;\nb = 1e999;\n").find("x.scad:2: a number must be finite"), std::string::npos)
+        << error_of("a = 1;\nb = 1e999;\n");
+    EXPECT_NE(error_of("b = [1, -inf];\n").find("x.scad:1: a number must be finite"), std::string::npos);
+    EXPECT_NE(error_of("b = +nan;\n").find("finite"), std::string::npos);
+}
+
 namespace {
 
 // Two leaves 0, 1 merge at 2, which stands on bed node 4 through bend 3; leaf 5 stands on bed 6.

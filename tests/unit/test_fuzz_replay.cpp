@@ -1,8 +1,11 @@
 // Replays the fuzz corpora (tests/data/fuzz/<format>/: seeds and the reproducers scripts/fuzz.sh
-// found) through parse_mesh and, when that succeeds, repair_mesh, in the normal build without
-// libFuzzer. Each file must parse (and repair) or be rejected with InputError; any other exception
+// found) in the normal build without libFuzzer, through what each fuzz target calls: a mesh
+// (stl, obj, off, ply) through parse_mesh and repair_mesh, a --config file (config) through
+// parse_config, the preset and the range checks, an edited .scad (scad) through read_edited_scad_text.
+// Each file must be accepted or rejected with the error its input is promised (InputError for a
+// mesh or a .scad, ParameterError for a config or a .scad value out of range); any other exception
 // fails its test, and a crash kills the test binary, which fails it too. Seeds named seed-* are
-// valid meshes and must be accepted. One test per file: FuzzCorpus/Replay.AcceptsOrRejectsWithInputError/<format>_<file>.
+// valid and must be accepted. One test per file: FuzzCorpus/Replay.AcceptsOrRejectsWithInputError/<format>_<file>.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,7 +19,10 @@
 #include <typeinfo>
 #include <vector>
 
+#include "core/config.hpp"
 #include "core/errors.hpp"
+#include "core/param_table.hpp"
+#include "edit/edited_scad.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/repair.hpp"
 #include "support.hpp"
@@ -26,7 +32,24 @@ using namespace cs;
 
 namespace {
 
-const std::vector<std::string> kFormats = {"stl", "obj", "off", "ply", "3mf"};
+const std::vector<std::string> kFormats = {"stl", "obj", "off", "ply", "3mf", "config", "scad"};
+
+// What the fuzz target of `format` does with `bytes` (fuzz/*.cpp); throws what it rejects with.
+void feed(const std::string& format, const std::string& bytes, const std::string& name) {
+    if (format == "config") {
+        ConfigFile c = parse_config(bytes, "--config " + name);
+        Params p = preset_params(c.preset.value_or("generic-0.4"));
+        apply_config(c.values, p, "--config " + name);
+        validate_params(p);
+    } else if (format == "scad") {
+        read_edited_scad_text(bytes, name);
+    } else {
+        Mesh raw = parse_mesh(bytes, format, name);
+        RepairReport report;
+        Mesh repaired = repair_mesh(raw, name, report);
+        EXPECT_FALSE(repaired.faces.empty()) << name << ": repair_mesh returned no triangles without an InputError";
+    }
+}
 
 std::string corpus_dir() { return cs::test::source_dir() + "/tests/data/fuzz"; }
 
@@ -71,21 +94,24 @@ TEST_P(Replay, AcceptsOrRejectsWithInputError) {
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::string name = f.format + "/" + f.name;
     std::string rejected;  // the InputError message, if any
+    const bool parameters = f.format == "config" || f.format == "scad";  // may be out of range
     try {
-        Mesh raw = parse_mesh(bytes, f.format, name);
-        RepairReport report;
-        Mesh repaired = repair_mesh(raw, name, report);
-        EXPECT_FALSE(repaired.faces.empty()) << name << ": repair_mesh returned no triangles without an InputError";
+        feed(f.format, bytes, name);
     } catch (const InputError& e) {
         rejected = e.what();
+        EXPECT_NE(f.format, "config") << name << ": a config file is a parameter error (exit 2): " << rejected;
         EXPECT_FALSE(rejected.empty()) << name << ": InputError without a message";
+    } catch (const ParameterError& e) {
+        rejected = e.what();
+        EXPECT_TRUE(parameters) << name << ": a ParameterError from a mesh reader: " << rejected;
+        EXPECT_FALSE(rejected.empty()) << name << ": ParameterError without a message";
     } catch (const std::exception& e) {
-        ADD_FAILURE() << name << ": threw " << typeid(e).name() << " (not InputError): " << e.what();
+        ADD_FAILURE() << name << ": threw " << typeid(e).name() << " (not the promised error): " << e.what();
     } catch (...) {
         ADD_FAILURE() << name << ": threw something that is not a std::exception";
     }
     if (starts_with(f.name, "seed-"))
-        EXPECT_EQ(rejected, "") << name << " is a valid seed mesh and must be accepted";
+        EXPECT_EQ(rejected, "") << name << " is a valid seed and must be accepted";
 }
 
 INSTANTIATE_TEST_SUITE_P(FuzzCorpus, Replay, ::testing::ValuesIn(corpus_files()), test_name);

@@ -392,6 +392,38 @@ TEST(HangLeaves, AreTheLeavesAndPillarsTheTreeGrowsFrom) {
     }
 }
 
+// The coverage top-up hangs only its new samples' leaves into the hung tree: node for node,
+// pillar for pillar and count for count what hanging every sample again gives (the tree grown from
+// it, and so every output, is the same). Every other sample is held back and added after.
+TEST(HangLeaves, MoreLeavesHungIntoATreeAreTheLeavesOfAllSamples) {
+    Mesh low_plate = cs::test::box({-10, -2, 0}, {-8, 2, 3});
+    append(low_plate, cs::test::box({-8, -2, 1.5}, {0, 2, 3}));
+    for (const Mesh& mesh : {cs::test::t_shape(), cs::test::cantilever_over_box(), low_plate, cs::test::table_shape()}) {
+        Params p;
+        auto g = grow(mesh, p);
+        std::vector<Sample> first, more;
+        for (size_t i = 0; i < g->samples.samples.size(); ++i) (i % 2 ? more : first).push_back(g->samples.samples[i]);
+        const SupportTree all = hang_leaves(*g->query, g->samples.samples, p);
+        const SupportTree merged = hang_more_leaves(*g->query, hang_leaves(*g->query, first, p), more, p);
+        ASSERT_EQ(merged.nodes.size(), all.nodes.size());
+        ASSERT_FALSE(all.nodes.empty() && all.pillars.empty());
+        for (size_t k = 0; k < all.nodes.size(); ++k) {
+            EXPECT_EQ(merged.nodes[k].p, all.nodes[k].p) << k;
+            EXPECT_EQ(merged.nodes[k].kind, all.nodes[k].kind) << k;
+            EXPECT_EQ(merged.nodes[k].contact, all.nodes[k].contact) << k;
+            EXPECT_EQ(merged.nodes[k].tip, all.nodes[k].tip) << k;
+        }
+        ASSERT_EQ(merged.pillars.size(), all.pillars.size());
+        for (size_t k = 0; k < all.pillars.size(); ++k) EXPECT_EQ(merged.pillars[k].top, all.pillars[k].top) << k;
+        EXPECT_EQ(merged.stats.touching, all.stats.touching);
+        EXPECT_EQ(merged.stats.bridged, all.stats.bridged);
+        EXPECT_EQ(merged.stats.internal, all.stats.internal);
+        EXPECT_EQ(merged.stats.dropped, all.stats.dropped);
+        EXPECT_EQ(merged.stats.pillars, all.stats.pillars);
+        EXPECT_EQ(grow_tree(*g->query, merged, p).total_length(), grow_tree(*g->query, all, p).total_length());
+    }
+}
+
 TEST(GrowTree, NoSamplesNoTree) {
     Params p;
     Mesh m = cs::test::box({0, 0, 0}, {5, 5, 5});

@@ -4,7 +4,9 @@
 The broken seeds (bad-*) are copies of files in tests/data/bad/; reproducers the fuzzers find
 (crash-*, timeout-*, oom-*, leak-*) are added by scripts/fuzz.sh. tests/unit/test_fuzz_replay.cpp
 feeds every file here to parse_mesh + repair_mesh. Rerun this script to regenerate the seeds (the
-output is byte-identical).
+output is byte-identical). The seeds of the other two fuzz targets are written by hand: config/
+(--config files) and scad/ (seed-tee.scad is the .scad clever-support wrote for a small T, its
+cs_input_path made relative; seed-edited.scad the same with a blocker, a point and an omitted strut).
 """
 import os
 import shutil
