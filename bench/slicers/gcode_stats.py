@@ -12,13 +12,14 @@ Reads the G-code of CuraEngine 4.13 (";LAYER:n", ";TYPE:SUPPORT") or PrusaSlicer
   through air (it went around the model), so they say how often islands on opposite sides of a
   model part follow each other in the slicer's order.
 * travel_mm: XY length of moves that do not extrude.
-* islands: per layer, the separate pieces the nozzle prints. A new island starts at the first
+* islands: per layer, the separate pieces the nozzle prints (summed; islands_by_layer: per layer). A new island starts at the first
   extrusion of a layer, and at every extrusion reached after more than ISLAND_TRAVEL_MM of travel
   since the previous extrusion (shared notes, slicer-handoff.md). Counted for every extrusion
   (`islands`) and for extrusions inside support sections only (`support_islands`; a support
   extrusion right after a non-support one also starts an island).
 * extruded_mm3 by section type: filament length times the filament's cross-section.
 """
+import gzip
 import json
 import math
 import re
@@ -49,7 +50,9 @@ def parse(path):
     retracted_since_support = False   # a retraction since the last extrusion, which was support
     travel = 0.0
     by_type = {}
-    with open(path, errors="replace") as f:
+    opener = (lambda p: gzip.open(p, "rt", errors="replace")) if path.endswith(".gz") else (
+        lambda p: open(p, errors="replace"))
+    with opener(path) as f:
         for raw in f:
             line = raw.strip()
             if line.startswith(";"):
@@ -116,6 +119,7 @@ def parse(path):
         "travel_mm": travel,
         "islands": sum(islands),
         "islands_max_per_layer": max(islands, default=0),
+        "islands_by_layer": islands,
         "support_islands": sum(support),
         "support_islands_max_per_layer": max(support, default=0),
         "support_islands_by_eighth": by_eighth(support),
