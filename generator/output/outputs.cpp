@@ -127,6 +127,7 @@ std::string report_json(const Result& r, const Job& job) {
                     {"nonmanifold_edges", r.repair.nonmanifold_edges},
                     {"self_intersecting_pairs", r.self_intersections}}}};
     if (is_scad_input(job.input)) j["input"]["openscad_defines"] = job.defines;
+    if (!r.input_contents.empty()) j["input"]["contents"] = r.input_contents;
     j["parameters"] = params_json(job.params);
     if (!job.edits.empty() || job.edits.highlight_strut >= 0) j["edits"] = edits_json(job.edits, r.blocked_samples);
     const auto& pl = r.placement;
@@ -252,6 +253,7 @@ std::string human_summary(const Result& r, const std::string& dir) {
     Vec3 size = bounding_box(r.model).size();
     s += fmt::format("{}: {:.1f} x {:.1f} x {:.1f} mm, orientation {} ({})\n", r.name, size.x, size.y, size.z,
                      to_string(r.orientation.mode), r.orientation.decided_by);
+    if (!r.input_contents.empty()) s += fmt::format("  input       {}\n", r.input_contents);
     s += fmt::format("  overhangs   {:.0f} mm^2, {} samples\n", r.samples.overhang_area, r.samples.samples.size());
     s += fmt::format("  tree        {} struts, {} merges, {} on the bed, {} on the model, {} pillars\n",
                      r.supports.sized.tree.struts.size(), st.merges, st.bed_contacts, st.model_contacts, st.pillars);

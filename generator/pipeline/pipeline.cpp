@@ -15,7 +15,7 @@
 #include "core/sha256.hpp"
 #include "core/param_table.hpp"
 #include "mesh/mesh_io.hpp"
-#include "output/render.hpp"
+#include "render/render.hpp"
 #include "query/model_query.hpp"
 #include "struts/solid_volume.hpp"
 #include "tree/slicer_cost.hpp"
@@ -234,12 +234,10 @@ std::vector<Sample> edited_samples(const ModelQuery& model, std::vector<Sample> 
     return samples;
 }
 
-bool is_scad_input(const std::string& path) { return path.size() > 5 && path.substr(path.size() - 5) == ".scad"; }
-
-Mesh load_input(const std::string& path, const std::vector<std::string>& defines) {
+Mesh load_input(const std::string& path, const std::vector<std::string>& defines, std::string* contents) {
     if (!is_scad_input(path)) {
         if (!defines.empty()) throw ParameterError("-D applies to a .scad input only, not " + path);
-        return read_mesh(path);
+        return read_mesh(path, false, contents);
     }
     if (!std::ifstream(path)) throw InputError(path + ": cannot open it. Check the path.");
     char tmpl[] = "/tmp/clever-support-part-XXXXXX";
@@ -279,7 +277,7 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     Stopwatch sw(r.stages);
     r.name = stem(job.input);
 
-    Mesh raw = sw.time("load", progress, [&] { return load_input(job.input, job.defines); });
+    Mesh raw = sw.time("load", progress, [&] { return load_input(job.input, job.defines, &r.input_contents); });
     r.input_sha256 = file_sha256(job.input);
     Mesh repaired = sw.time("repair", progress, [&] { return repair_mesh(raw, input, r.repair); });
     raw = Mesh();  // each stage's input is released once the next has its own: big scans need the room
@@ -344,13 +342,6 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         r.warnings.push_back(std::to_string(r.supports.sized.strength_violations) +
                              " struts are longer than safe even at d_max; raise --d-max");
     return r;
-}
-
-std::vector<double> pose_numbers(const Placement& pl) {
-    std::vector<double> v{pl.scale};
-    for (const auto& row : pl.rotation) v.insert(v.end(), row, row + 3);
-    v.insert(v.end(), {pl.translation.x, pl.translation.y, pl.translation.z});
-    return v;
 }
 
 }  // namespace cs
