@@ -707,6 +707,8 @@ def main():
             if "slices" in m:
                 m["derived"], m["targets"] = derive(m)
         summarize(data)
+        if args.reparse:  # the G-codes' new numbers are kept, for a later --report-only
+            json.dump(data, open(jpath, "w"), indent=1)
         open(mpath, "w").write(report_md(data))
         write_chart_svg(data, svg)
         return 0
