@@ -29,6 +29,8 @@ import math
 import re
 import sys
 
+from gcode_stats import Extruder
+
 # The profile's machine (profile.json) and each slicer's default for what the profile leaves open:
 # Cura's fdmprinter.def.json (machine_max_jerk_z 0.4, machine_max_jerk_e 5, feedrates unlimited);
 # PrusaSlicer 2.5's machine limits (jerk z 0.2, e 2.5; max feedrate x/y 500, z 12, e 120 mm/s).
@@ -126,9 +128,9 @@ def split(path, slicer_s=None):
     the estimate from its log); PrusaSlicer's is read from the G-code's footer."""
     terms = {k: 0.0 for k in TERMS}
     slicer = None
-    x = y = z = e = 0.0
+    x = y = z = 0.0
     f = 1500.0 / 60
-    relative_e = False
+    ext = Extruder()
     blocks = []
     m = None
     with open_gcode(path) as fh:
@@ -146,18 +148,7 @@ def split(path, slicer_s=None):
                     slicer_s = prusa_seconds(_PRUSA_TIME.search(raw).group(1))
                 continue
             code = raw.split(";", 1)[0].strip()
-            if not code:
-                continue
-            if code.startswith("M82"):
-                relative_e = False
-                continue
-            if code.startswith("M83"):
-                relative_e = True
-                continue
-            if code.startswith("G92"):
-                mm = re.search(r"E(-?[0-9.]+)", code)
-                if mm:
-                    e = float(mm.group(1))
+            if not code or ext.sets_mode(code):
                 continue
             if code.startswith("G4"):
                 w = dict(_WORD.findall(code))
@@ -171,11 +162,7 @@ def split(path, slicer_s=None):
             nx = float(w["X"]) if "X" in w else x
             ny = float(w["Y"]) if "Y" in w else y
             nz = float(w["Z"]) if "Z" in w else z
-            de = 0.0
-            if "E" in w:
-                ne = float(w["E"])
-                de = ne if relative_e else ne - e
-                e = e + ne if relative_e else ne
+            de = ext.delta(w)
             dx, dy, dz = nx - x, ny - y, nz - z
             x, y, z = nx, ny, nz
             if m is None:
