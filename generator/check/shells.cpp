@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "check/check.hpp"
+#include "mesh/weld.hpp"
 
 namespace cs {
 
@@ -30,20 +31,6 @@ bool is_watertight(const Mesh& m) {
         if (it == directed.end() || it->second != n) return false;
     }
     return true;
-}
-
-Mesh weld(const Mesh& raw) {
-    std::map<std::tuple<double, double, double>, std::uint32_t> index;
-    Mesh m;
-    std::vector<std::uint32_t> remap(raw.vertices.size());
-    for (size_t i = 0; i < raw.vertices.size(); ++i) {
-        auto key = std::make_tuple(raw.vertices[i].x, raw.vertices[i].y, raw.vertices[i].z);
-        auto [it, fresh] = index.emplace(key, static_cast<std::uint32_t>(m.vertices.size()));
-        if (fresh) m.vertices.push_back(raw.vertices[i]);
-        remap[i] = it->second;
-    }
-    for (const auto& f : raw.faces) m.faces.push_back({remap[f[0]], remap[f[1]], remap[f[2]]});
-    return m;
 }
 
 namespace {
@@ -166,7 +153,7 @@ std::vector<Mesh> meshes_of(const Mesh& m, FaceSets& sets) {
 }  // namespace
 
 std::vector<Mesh> split_shells(const Mesh& raw) {
-    Mesh m = weld(raw);
+    Mesh m = weld_vertices(raw).mesh;
     // Faces join across their edges: an edge that exactly two faces share joins them; an edge
     // with more (solids touching) joins each face to its own solid's next face.
     std::map<Edge, std::vector<std::uint32_t>> edge_faces;

@@ -24,6 +24,7 @@
 #include "output/outputs.hpp"
 #include "render/render.hpp"
 #include "pipeline/pipeline.hpp"
+#include "view/view_cli.hpp"
 
 #ifndef CS_VERSION
 #define CS_VERSION "0.1.0"
@@ -83,10 +84,9 @@ struct ParamFlags {
         return cfg;
     }
 
-    // preset, then the config file, then flags: later wins.
-    Params resolve() const {
+    // preset, then the config file (`cfg`: load_config), then flags: later wins.
+    Params resolve(const nlohmann::json& cfg) const {
         std::string base = preset;
-        nlohmann::json cfg = load_config();
         if (cfg.contains("preset") && !preset_given) base = cfg["preset"].get<std::string>();
         Params p = preset_params(base);
         if (!cfg.is_null()) {
@@ -121,9 +121,9 @@ Box3 box_of(const std::vector<double>& v) {
     return b;
 }
 
-// Support blockers and points: the --config file's "block" / "support-point" lists first, then
-// the flags.
-ManualEdits edits_from(const nlohmann::json& cfg, const std::string& config, const std::vector<std::string>& blocks,
+// Support blockers and points: the --config file's "support-blocker" (or, as before,
+// "block") / "support-point" lists first, then the flags.
+ManualEdits edits_from(const nlohmann::json& cfg, const std::string& config, const std::vector<std::string>& blockers,
                        const std::vector<std::string>& points) {
     ManualEdits e;
     auto numbers = [&](const nlohmann::json& item, size_t count, const std::string& key, const std::string& form) {
@@ -135,14 +135,17 @@ ManualEdits edits_from(const nlohmann::json& cfg, const std::string& config, con
             throw ParameterError("--config " + config + ": \"" + key + "\" must hold lists of " + form);
         return v;
     };
-    if (cfg.contains("block"))
-        for (const auto& b : cfg["block"]) e.blockers.push_back(box_of(numbers(b, 6, "block", "[x0, y0, z0, x1, y1, z1]")));
+    for (const char* key : {"support-blocker", "block"})
+        if (cfg.contains(key))
+            for (const auto& b : cfg[key])
+                e.support_blockers.push_back(box_of(numbers(b, 6, key, "[x0, y0, z0, x1, y1, z1]")));
     if (cfg.contains("support-point"))
         for (const auto& q : cfg["support-point"]) {
             auto v = numbers(q, 3, "support-point", "[x, y, z]");
             e.support_points.push_back({v[0], v[1], v[2]});
         }
-    for (const auto& b : blocks) e.blockers.push_back(box_of(numbers_in(b, 6, "--block", "x0,y0,z0,x1,y1,z1 in mm")));
+    for (const auto& b : blockers)
+        e.support_blockers.push_back(box_of(numbers_in(b, 6, "--support-blocker", "x0,y0,z0,x1,y1,z1 in mm")));
     for (const auto& q : points) {
         auto v = numbers_in(q, 3, "--support-point", "x,y,z in mm");
         e.support_points.push_back({v[0], v[1], v[2]});
@@ -196,7 +199,7 @@ struct GenerateArgs {
     double scale = 1;
     std::optional<double> fit;
     bool no_self_intersection_check = false, no_timings = false;
-    std::vector<std::string> part_defines, blocks, support_points;
+    std::vector<std::string> part_defines, support_blockers, support_points;
     ParamFlags params;
 };
 
@@ -215,6 +218,8 @@ struct CommandLine {
     CheckArgs check;
     RenderOptions render;
     CLI::App *regrow_cmd = nullptr, *check_cmd = nullptr, *render_cmd = nullptr, *presets_cmd = nullptr;
+    ViewArgs view;
+    CLI::App* view_cmd = nullptr;
 };
 
 void add_run_flags(CLI::App& app, RunOptions& o, bool regrow) {
@@ -250,7 +255,8 @@ void add_generate(CLI::App& app, GenerateArgs& g, RunOptions& o) {
     app.add_option("-D", g.part_defines, "For a .scad input: OpenSCAD's -D name=value, passed when rendering the part (repeatable)")
         ->allow_extra_args(false);
     auto edits_group = "Manual edits (coordinates of <name>.model.stl)";
-    app.add_option("--block", g.blocks, "No support inside this box: x0,y0,z0,x1,y1,z1 (repeatable)")
+    app.add_option("--support-blocker,--block", g.support_blockers,
+                   "No support inside this box: x0,y0,z0,x1,y1,z1 (repeatable)")
         ->allow_extra_args(false)
         ->group(edits_group);
     app.add_option("--support-point", g.support_points, "Also support this point of the model's underside: x,y,z (repeatable)")
@@ -299,7 +305,8 @@ CLI::App* add_render(CLI::App& app, RenderOptions& r) {
 void describe_app(CLI::App& app) {
     app.footer("Which file to print (in --out):\n"
                "  Cura:         <name>.3mf        supports marked \"print as support\"; import\n"
-               "                                  clever_support.curaprofile once (README, \"Printing in Cura\")\n"
+               "                                  clever_support.curaprofile once (on an Ender 3/5 or CR-10:\n"
+               "                                  clever_support_creality.curaprofile; README, \"Printing in Cura\")\n"
                "  PrusaSlicer:  <name>.prusa.3mf  supports as a part with support-like settings\n"
                "  Other:        <name>.supported.stl with the slicer's own supports off");
     app.set_version_flag("--version", CS_VERSION);
@@ -314,6 +321,7 @@ void add_commands(CLI::App& app, CommandLine& cl) {
     cl.render_cmd = add_render(app, cl.render);
     cl.presets_cmd = app.add_subcommand("presets", "List the printer presets, their values and where those come from.\n"
                                                    "Your own: --config my.json with {\"preset\": \"generic-0.4\", \"sampling\": 2}");
+    cl.view_cmd = add_view_command(app, cl.view);
 }
 
 int cmd_presets() {
@@ -336,7 +344,7 @@ int cmd_render(const RenderOptions& o) {
 }
 
 int cmd_check(const CheckArgs& c) {
-    Params p = c.params.resolve();
+    Params p = c.params.resolve(c.params.load_config());
     RepairReport rr;
     Mesh model = repair_mesh(read_mesh(c.model), c.model, rr);
     Mesh sup = read_mesh(c.supports, /*allow_empty=*/true);
@@ -399,8 +407,9 @@ int cmd_generate(const GenerateArgs& g, const RunOptions& o) {
     job.orient = g.orient;
     job.self_intersection_check = !g.no_self_intersection_check;
     job.timings = !g.no_timings;
-    job.params = g.params.resolve();
-    job.edits = edits_from(g.params.load_config(), g.params.config, g.blocks, g.support_points);
+    const nlohmann::json config = g.params.load_config();  // read once: parameters and edits
+    job.params = g.params.resolve(config);
+    job.edits = edits_from(config, g.params.config, g.support_blockers, g.support_points);
     return finish_run(run_showing_progress(job, o), job, g.out_dir, o);
 }
 
@@ -412,7 +421,7 @@ int cmd_regrow(const std::string& file, const RunOptions& o) {
     if (!o.quiet && r.input_sha256 != edited.input_sha256)
         std::fprintf(stderr, "clever-support: note: %s changed since %s was written; the supports follow it as it is now\n",
                      job.input.c_str(), file.c_str());
-    bool placed_edits = !job.edits.blockers.empty() || !job.edits.support_points.empty();
+    bool placed_edits = !job.edits.support_blockers.empty() || !job.edits.support_points.empty();
     if (placed_edits && pose_numbers(r.placement) != edited.pose)
         r.warnings.push_back("the model is placed differently than when " + file +
                              " was written (the part, its scale or the orientation changed): check that the support "
@@ -425,6 +434,7 @@ int run_command(const CommandLine& cl) {
     if (cl.render_cmd->parsed()) return cmd_render(cl.render);
     if (cl.check_cmd->parsed()) return cmd_check(cl.check);
     if (cl.regrow_cmd->parsed()) return cmd_regrow(cl.regrow_file, cl.run);
+    if (cl.view_cmd->parsed()) return run_view_command(cl.view);
     return cmd_generate(cl.generate, cl.run);
 }
 
@@ -451,7 +461,7 @@ int main(int argc, char** argv) {
                  "  clever-support --preset replicator2-pla --orient keep part.stl\n"
                  "  clever-support check --model out/m/m.model.stl --supports out/m/m.supports.stl\n"
                  "  clever-support render out/m/m.scad -D k=0.003\n"
-                 "  clever-support part.scad -D width=30 --block 0,0,0,10,10,20\n"
+                 "  clever-support part.scad -D width=30 --support-blocker 0,0,0,10,10,20\n"
                  "  clever-support regrow out/m/m.scad              # after editing it\n",
                  "clever-support"};
     CommandLine cl;

@@ -140,12 +140,6 @@ inline double signed_volume(const Mesh& m) {
     return v / 6.0;
 }
 
-inline double surface_area(const Mesh& m) {
-    double a = 0;
-    for (const auto& f : m.faces) a += 0.5 * norm(face_normal_unnormalized(m, f));
-    return a;
-}
-
 // Appends `b` to `a` (vertex indices of b are shifted).
 inline void append(Mesh& a, const Mesh& b) {
     auto offset = static_cast<std::uint32_t>(a.vertices.size());

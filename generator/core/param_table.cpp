@@ -125,7 +125,9 @@ nlohmann::ordered_json param_value_json(const ParamRow& row, const Params& p) {
 
 void apply_config(const nlohmann::json& config, Params& p, const std::string& where) {
     for (const auto& [key, value] : config.items()) {
-        if (key == "preset" || key == "description" || key == "block" || key == "support-point") continue;
+        if (key == "preset" || key == "description" || key == "support-blocker" || key == "block" ||
+            key == "support-point")
+            continue;  // the user's edits (cli/main.cpp edits_from); "block" is their old name
         const ParamRow* row = find_param(key);
         if (!row || key.rfind("--", 0) == 0)
             throw ParameterError(where + ": \"" + key + "\" is not a parameter (use the flag names, e.g. \"critical-angle\")");

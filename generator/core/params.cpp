@@ -17,7 +17,7 @@ const std::vector<Preset>& presets() {
                      "supports), "
                      "0.8 mm tips",
                      g,
-                     "angle: the benchmark slicer profile (Cura/Prusa support angle 50); walls: slicer notes pitfall 6 "
+                     "angle: the benchmark slicer profile (Cura/Prusa support angle 50); walls: measured with bench/slicers "
                      "(0.4 mm walls kept 9-16% in CuraEngine, 0.5 mm kept all); tips: 0.5 mm rods vanish when sliced, "
                      "0.8 mm is Cura's tree-support tip; sampling: measured (bench: 2.5 mm used 44-49% less support "
                      "filament than 1.5 mm in CuraEngine, at full coverage); k, tip length: the paper"});

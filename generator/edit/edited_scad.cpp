@@ -110,7 +110,7 @@ ManualEdits read_edits(const Reader& r, int struts) {
         Box3 box;
         box.add(a);
         box.add(c);
-        e.blockers.push_back(box);
+        e.support_blockers.push_back(box);
     }
     const auto& points = r.list("support_points");
     for (size_t i = 0; i < points.value.size(); ++i)
@@ -130,6 +130,10 @@ EditedScad read_edited_scad(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path + ": cannot open it. Give the .scad file clever-support wrote.");
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return read_edited_scad_text(text, path);
+}
+
+EditedScad read_edited_scad_text(const std::string& text, const std::string& path) {
     Reader r(parse_scad_values(text, path), path);
 
     EditedScad out;

@@ -15,12 +15,12 @@ namespace cs {
 // A user's edits to the supports: a generated .scad's [Manual edits] section, or --block and
 // --support-point on the command line. Coordinates are the placed model's (as in <name>.model.stl).
 struct ManualEdits {
-    std::vector<Box3> blockers;        // no support solid inside; overhangs inside are not sampled
+    std::vector<Box3> support_blockers;  // no support solid inside; overhangs inside are not sampled
     std::vector<Vec3> support_points;  // extra points to support, on the model's underside
     std::vector<int> omit_struts;      // struts of the grown tree left out, with what hangs from them
     int highlight_strut = -1;          // shown in colour in the .scad; no effect on the supports
 
-    bool empty() const { return blockers.empty() && support_points.empty() && omit_struts.empty(); }
+    bool empty() const { return support_blockers.empty() && support_points.empty() && omit_struts.empty(); }
 };
 
 struct Job {

@@ -9,22 +9,10 @@
 #include "core/errors.hpp"
 #include "mesh/fill_holes.hpp"
 #include "mesh/unfold_caps.hpp"
+#include "mesh/weld.hpp"
 
 namespace cs {
 namespace {
-
-struct VecHash {
-    size_t operator()(const Vec3& v) const {
-        std::uint64_t h = 1469598103934665603ull;
-        for (double c : {v.x, v.y, v.z}) {
-            if (c == 0) c = 0;  // -0 and +0 weld
-            std::uint64_t bits;
-            std::memcpy(&bits, &c, 8);
-            h = (h ^ bits) * 1099511628211ull;
-        }
-        return h;
-    }
-};
 
 struct DisjointSets {
     std::vector<int> parent;
@@ -80,17 +68,12 @@ namespace {
 
 constexpr std::uint32_t kNone = UINT32_MAX;
 
-// 1. Weld identical vertices: `remap` takes each input vertex to its welded one.
-Mesh weld_vertices(const Mesh& raw, std::vector<std::uint32_t>& remap, RepairReport& r) {
+// 1. Weld identical vertices (mesh/weld.hpp): `remap` takes each input vertex to its welded one.
+Mesh weld_identical(const Mesh& raw, std::vector<std::uint32_t>& remap, RepairReport& r) {
+    Welded w = weld_vertices(raw);
     Mesh m;
-    std::unordered_map<Vec3, std::uint32_t, VecHash> index;
-    remap.assign(raw.vertices.size(), 0);
-    for (size_t i = 0; i < raw.vertices.size(); ++i) {
-        Vec3 v = raw.vertices[i];
-        auto [it, fresh] = index.emplace(v, static_cast<std::uint32_t>(m.vertices.size()));
-        if (fresh) m.vertices.push_back(v);
-        remap[i] = it->second;
-    }
+    m.vertices = std::move(w.mesh.vertices);
+    remap = std::move(w.remap);
     // Count only vertices that were genuinely shared by separate triangle corners in indexed input.
     std::vector<char> used(raw.vertices.size(), 0);
     for (const auto& f : raw.faces) used[f[0]] = used[f[1]] = used[f[2]] = 1;
@@ -330,7 +313,7 @@ Mesh repair_mesh(const Mesh& raw, const std::string& name, RepairReport& r) {
     const double extent = std::max({box.size().x, box.size().y, box.size().z});
 
     std::vector<std::uint32_t> remap;
-    Mesh m = weld_vertices(raw, remap, r);
+    Mesh m = weld_identical(raw, remap, r);
     keep_proper_triangles(raw, remap, extent, m, r);
     if (m.faces.empty())
         throw InputError(name + ": every triangle is degenerate (zero area); nothing to print. Re-export the model.");

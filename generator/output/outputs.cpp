@@ -71,7 +71,7 @@ json supports_json(const Supports& s, const Params& p) {
 
 json edits_json(const ManualEdits& e, std::size_t blocked_samples) {
     json blockers = json::array(), points = json::array();
-    for (const auto& b : e.blockers) blockers.push_back({{b.min.x, b.min.y, b.min.z}, {b.max.x, b.max.y, b.max.z}});
+    for (const auto& b : e.support_blockers) blockers.push_back({{b.min.x, b.min.y, b.min.z}, {b.max.x, b.max.y, b.max.z}});
     for (const auto& q : e.support_points) points.push_back({q.x, q.y, q.z});
     return {{"support_blockers", blockers},
             {"support_points", points},
@@ -80,24 +80,17 @@ json edits_json(const ManualEdits& e, std::size_t blocked_samples) {
             {"samples_blocked", blocked_samples}};
 }
 
-void make_dirs(const std::string& dir) {
-    std::string path;
-    size_t i = 0;
-    while (i != std::string::npos) {
-        i = dir.find('/', i + 1);
-        path = dir.substr(0, i);
-        if (path.empty()) continue;
-        struct stat st{};
-        if (stat(path.c_str(), &st) == 0) {
-            if (!S_ISDIR(st.st_mode))
-                throw OutputError(dir + ": cannot create the output directory: " + path +
-                                  " exists and is not a directory. Choose another --out directory.");
-            continue;
-        }
-        if (mkdir(path.c_str(), 0755) != 0 && errno != EEXIST)
-            throw OutputError(dir + ": cannot create the output directory: " + std::strerror(errno) +
-                              ". Choose another --out directory.");
-    }
+// Creates `dir` and its parents; OutputError naming what is in the way, or the system's reason.
+void create_output_dir(const std::string& dir) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (!ec) return;
+    for (fs::path p = fs::path(dir).lexically_normal(); !p.empty() && p != p.parent_path(); p = p.parent_path())
+        if (std::error_code e; fs::exists(p, e) && !fs::is_directory(p, e))
+            throw OutputError(dir + ": cannot create the output directory: " + p.string() +
+                              " exists and is not a directory. Choose another --out directory.");
+    throw OutputError(dir + ": cannot create the output directory: " + ec.message() + ". Choose another --out directory.");
 }
 
 std::string absolute_path(const std::string& path) {
@@ -159,7 +152,7 @@ std::string report_json(const Result& r, const Job& job) {
                       {"face_samples", counts[0]},
                       {"edge_samples", counts[1]},
                       {"point_samples", counts[2]},
-                      {"centroid_samples", counts[3]},
+                      {"centroid_samples", counts[3]},  // gap fills (SampleKind::GapFill); the key readers know
                       {"top_up_samples", r.samples.topped_up}};
     j["supports"] = supports_json(r.supports, job.params);
     j["columns_baseline"] = supports_json(r.columns, job.params);
@@ -201,12 +194,13 @@ std::vector<OutputFile> output_files(const Result& r, const Job& job, const std:
                          return emit_scad(r.supports, job, meta);
                      }});
     files.push_back({"clever_support.scad", [] { return scad_template_library(); }});
-    files.push_back({"clever_support.curaprofile", [&job] { return encode_cura_profile("clever-support supports", job.params); }});
+    for (const CuraPrinterFamily& family : cura_printer_families())
+        files.push_back({family.file, [&job, &family] { return encode_cura_profile(family, job.params); }});
     return files;
 }
 
 void write_outputs(const std::string& dir, const std::vector<OutputFile>& files) {
-    make_dirs(dir);
+    create_output_dir(dir);
     std::vector<std::string> temps;
     auto cleanup = [&] {
         for (const auto& t : temps) ::unlink(t.c_str());
@@ -264,8 +258,9 @@ std::string human_summary(const Result& r, const std::string& dir) {
     for (const auto& x : r.stages) total += x.seconds;
     s += fmt::format("  time        {:.2f} s\n", total);
     s += fmt::format("  outputs     {}/{}.supported.stl, .supports.stl, .model.stl, .report.json, .scad\n", dir, r.name);
-    s += fmt::format("  print       Cura: open {0}/{1}.3mf (supports print as support; import {0}/clever_support.curaprofile\n"
-                     "              once, see README \"Printing in Cura\"). PrusaSlicer: open {0}/{1}.prusa.3mf.\n"
+    s += fmt::format("  print       Cura: open {0}/{1}.3mf (supports print as support); import {0}/clever_support.curaprofile\n"
+                     "              once (clever_support_creality.curaprofile on an Ender 3/5 or CR-10), see README\n"
+                     "              \"Printing in Cura\". PrusaSlicer: open {0}/{1}.prusa.3mf.\n"
                      "              Any other slicer: {0}/{1}.supported.stl with its own supports off.\n",
                      dir, r.name);
     return s;

@@ -36,7 +36,7 @@ const char* kind_name(NodeKind k) {
     switch (k) {
         case NodeKind::Leaf: return "leaf";
         case NodeKind::Merge: return "merge";
-        case NodeKind::Chain: return "bend";
+        case NodeKind::Bend: return "bend";
         case NodeKind::Bed: return "bed";
         case NodeKind::ModelContact: return "contact";
         case NodeKind::Dropped: return "dropped";
@@ -103,9 +103,9 @@ std::string manual_edits(const ManualEdits& e) {
     s += "// Boxes with no support solid inside, [[x0, y0, z0], [x1, y1, z1]] in the placed model's coordinates\n"
          "// (those of <name>.model.stl); overhangs inside are left unsupported. Shown see-through in the preview.\n";
     s += "support_blockers = [";
-    for (size_t i = 0; i < e.blockers.size(); ++i)
-        s += (i ? ",\n  " : "\n  ") + std::string("[") + exact_pt(e.blockers[i].min) + ", " + exact_pt(e.blockers[i].max) + "]";
-    s += e.blockers.empty() ? "];\n" : "\n];\n";
+    for (size_t i = 0; i < e.support_blockers.size(); ++i)
+        s += (i ? ",\n  " : "\n  ") + std::string("[") + exact_pt(e.support_blockers[i].min) + ", " + exact_pt(e.support_blockers[i].max) + "]";
+    s += e.support_blockers.empty() ? "];\n" : "\n];\n";
     s += "// Extra points to support, [x, y, z] on the model's underside (snapped to it within 2 mm)\n";
     s += "support_points = [";
     for (size_t i = 0; i < e.support_points.size(); ++i) s += (i ? ",\n  " : "\n  ") + exact_pt(e.support_points[i]);

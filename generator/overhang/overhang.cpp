@@ -236,6 +236,10 @@ std::vector<Vec3> edge_points(const EdgeSegment& e, double step) {
 
 }  // namespace
 
+OverhangOptions overhang_options(const Params& p) {
+    return {p.critical_angle, p.sampling_distance, p.layer_height, touching_space(p)};
+}
+
 double coverage_reach(double sampling_distance) { return std::sqrt(0.5) * sampling_distance; }
 
 bool covers(const Vec3& sample, const Vec3& x, double reach, double critical_angle_deg) {
@@ -263,14 +267,6 @@ std::vector<char> classify_faces(const Mesh& m, const OverhangOptions& o) {
         out[i] = needs_support(normalized(face_normal_unnormalized(m, f)), o.critical_angle);
     }
     return out;
-}
-
-double overhang_area(const Mesh& m, const OverhangOptions& o) {
-    auto cls = classify_faces(m, o);
-    double a = 0;
-    for (size_t i = 0; i < m.faces.size(); ++i)
-        if (cls[i]) a += 0.5 * norm(face_normal_unnormalized(m, m.faces[i]));
-    return a;
 }
 
 void rasterize_triangle(const Vec3& a0, const Vec3& b0, const Vec3& c0, double s, std::vector<Vec3>& out) {
@@ -347,7 +343,7 @@ void fill_demand(const Demand& d, const OverhangOptions& o, Needs needs, Rests r
         }
     // Whatever the lattice and the rims still miss inside the faces: a gap fill at the point.
     for (const auto& x : d.faces)
-        if (needs(x, INFINITY)) add(x, SampleKind::Centroid);
+        if (needs(x, INFINITY)) add(x, SampleKind::GapFill);
 }
 
 }  // namespace
@@ -374,7 +370,8 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
         if (p.z >= o.bed_height) res.samples.push_back({p, SampleKind::Face}), lattice.add(p);
     res.edges = support_edges(m, cls, o, res);
     for (const auto& a : res.anchors) grid.add(a);
-    res.point_overhangs = local_minima(m, o).size();
+    const Demand demand = coverage_demand(m, cls, res.edges, o, kEdgeStepOfReach);
+    res.point_overhangs = demand.minima.size();
 
     // A point needs a sample near it unless it lies in the first layer, is covered, or rests on
     // material below (it needs none itself; off the lattice it covers nothing, since `check` may
@@ -383,7 +380,7 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
         bool covered = lattice.covered(x, above) || grid.covered(x, above);
         return x.z >= o.bed_height && !covered && !rests(x);
     };
-    fill_demand(coverage_demand(m, cls, res.edges, o, kEdgeStepOfReach), o, needs, rests, [&](const Vec3& x, SampleKind kind) {
+    fill_demand(demand, o, needs, rests, [&](const Vec3& x, SampleKind kind) {
         grid.add(x);
         res.samples.push_back({x, kind});
     }, true);

@@ -23,13 +23,14 @@
 #include <vector>
 
 #include "core/geometry.hpp"
+#include "core/params.hpp"
 
 namespace cs {
 
 class ModelQuery;
 
-// Face: a lattice point. Centroid: a gap fill, a face point the lattice and the rims leave uncovered.
-enum class SampleKind { Face, Edge, Point, Centroid };
+// Face: a lattice point. GapFill: a face point the lattice and the rims leave uncovered.
+enum class SampleKind { Face, Edge, Point, GapFill };
 
 struct Sample {
     Vec3 p;
@@ -59,6 +60,10 @@ struct OverhangOptions {
                                     // (the tree's touching_space: two z gaps and a layer)
 };
 
+// The sampling's options for a printer's parameters: its critical angle, sample spacing, first
+// layer and touching_space (core/rules.hpp). The one place they are taken from Params.
+OverhangOptions overhang_options(const Params& p);
+
 // Horizontal distance within which a support contact covers an overhang point: half the diagonal of
 // a lattice cell, the largest gap a square lattice of this spacing leaves.
 double coverage_reach(double sampling_distance);
@@ -76,9 +81,6 @@ bool needs_support(const Vec3& unit_normal, double critical_angle_deg);
 
 // Per face: does it need support (needs_support, and not lying on the bed)?
 std::vector<char> classify_faces(const Mesh& m, const OverhangOptions& o);
-
-// Total area of the faces classify_faces marks.
-double overhang_area(const Mesh& m, const OverhangOptions& o);
 
 // Lattice samples of one triangle (projected to XY), by the top-left rule; z from its plane.
 void rasterize_triangle(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, std::vector<Vec3>& out);

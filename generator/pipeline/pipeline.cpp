@@ -85,8 +85,8 @@ double scale_to_mm(Mesh& mesh, const Job& job, std::vector<std::string>& warning
 Orientation orient_by_support(const Mesh& scaled, const Params& p, const std::string& orient) {
     Params coarse = p;
     coarse.sampling_distance = 2 * p.sampling_distance;
-    coarse.keep_out.clear();  // a user's blockers are in the chosen pose's coordinates
-    OverhangOptions coarse_oo{p.critical_angle, coarse.sampling_distance, p.layer_height, touching_space(p)};
+    const OverhangOptions coarse_oo = overhang_options(coarse);
+    // A user's support blockers are in the chosen pose's coordinates: no pose is judged with them.
     return choose_orientation(scaled, p, orient, [&](const Mesh& rotated) {
         Placement pl;
         Rotation id;
@@ -113,8 +113,9 @@ SupportTree grow_cheaper_tree(const ModelQuery& q, const std::vector<Sample>& sa
     return grow_cheaper_tree(q, hang_leaves(q, samples, p), p);
 }
 
-SupportTree grow_cheaper_tree(const ModelQuery& q, const SupportTree& hung, const Params& p) {
-    SupportTree best = grow_tree(q, hung, p);  // the leaves are the same for every way of growing
+SupportTree grow_cheaper_tree(const ModelQuery& q, const SupportTree& hung, const Params& p,
+                              const std::vector<Box3>& support_blockers) {
+    SupportTree best = grow_tree(q, hung, p, {}, support_blockers);  // the leaves are the same for every way of growing
     if (p.strategy != Strategy::tree) return best;
     auto price = [&](SupportTree& t) {
         const SizedTree sized = size_struts(t, p);
@@ -124,7 +125,7 @@ SupportTree grow_cheaper_tree(const ModelQuery& q, const SupportTree& hung, cons
     const TreeStats plain = best.stats;
     double best_seconds = price(best);
     for (const GrowOptions& way : {GrowOptions{.lean_merging_leaves = true}, GrowOptions{.pair_leaves_first = true}}) {
-        SupportTree t = grow_tree(q, hung, p, way);
+        SupportTree t = grow_tree(q, hung, p, way, support_blockers);
         // A tree that gives up more samples is cheaper to print for that alone: never a saving.
         if (t.stats.dropped > plain.dropped || t.stats.dropped_branches > plain.dropped_branches) continue;
         if (const double s = price(t); s < best_seconds) best = std::move(t), best_seconds = s;
@@ -188,9 +189,9 @@ SupportTree prune_struts(SupportTree t, const std::vector<int>& omit) {
 namespace {
 
 // Would the tip under sample s stand in one of the user's support blockers?
-bool in_blocker(const Vec3& s, const std::vector<Box3>& blockers, const Params& p) {
+bool in_support_blocker(const Vec3& s, const std::vector<Box3>& support_blockers, const Params& p) {
     const double tip = p.gap + p.tip_length, tip_width = std::max(p.tip_diameter, p.d_min);
-    return sweep_meets_boxes(s, s - Vec3{0, 0, tip}, tip_width, 0, blockers);
+    return sweep_meets_boxes(s, s - Vec3{0, 0, tip}, tip_width, 0, support_blockers);
 }
 
 // What holds each sample's overhang up, at the height of that overhang: a live leaf's tip top, a
@@ -216,7 +217,7 @@ constexpr double kSupportPointSnap = 2.0;
 
 std::vector<Sample> edited_samples(const ModelQuery& model, std::vector<Sample> samples, const ManualEdits& edits,
                                    const Params& p) {
-    auto blocked = [&](const Vec3& s) { return in_blocker(s, edits.blockers, p); };
+    auto blocked = [&](const Vec3& s) { return in_support_blocker(s, edits.support_blockers, p); };
     std::erase_if(samples, [&](const Sample& s) { return blocked(s.p); });
     for (const Vec3& given : edits.support_points) {
         auto where = fmt::format("support point [{}, {}, {}]", given.x, given.y, given.z);
@@ -270,8 +271,8 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     if (!(job.scale != 0 && std::isfinite(job.scale)))
         throw ParameterError("--scale must be a non-zero number");
     if (job.fit && !(*job.fit > 0 && std::isfinite(*job.fit))) throw ParameterError("--fit must be a positive size in mm");
-    Params p = job.params;
-    p.keep_out = job.edits.blockers;
+    const Params& p = job.params;
+    const std::vector<Box3>& blockers = job.edits.support_blockers;
     const std::string& input = job.shown_input();
     Result r;
     Stopwatch sw(r.stages);
@@ -293,7 +294,7 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     // Scale first, so orientation and placement see millimetres.
     Mesh scaled = std::move(repaired);
     const double scale = scale_to_mm(scaled, job, r.warnings);
-    OverhangOptions oo{p.critical_angle, p.sampling_distance, p.layer_height, touching_space(p)};
+    const OverhangOptions oo = overhang_options(p);
     r.orientation = sw.time("orient", progress, [&] { return orient_by_support(scaled, p, job.orient); });
     r.model = place_on_bed(scaled, 1.0, r.orientation.rotation.m, r.placement);
     r.placement.scale = scale;
@@ -314,25 +315,25 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     // the tree grows); new tips cover their own points, so once is enough.
     SupportTree hung;
     auto extra = sw.time("coverage top-up", progress, [&] {
-        hung = hang_leaves(*query, r.samples.samples, p);
+        hung = hang_leaves(*query, r.samples.samples, p, blockers);
         auto more = top_up_samples(r.model, oo, query.get(), r.samples, coverers(hung, r.samples.samples));
-        std::erase_if(more, [&](const Sample& s) { return in_blocker(s.p, job.edits.blockers, p); });
+        std::erase_if(more, [&](const Sample& s) { return in_support_blocker(s.p, blockers, p); });
         return more;
     });
     if (!extra.empty()) {
         r.samples.topped_up = extra.size();
         r.samples.samples.insert(r.samples.samples.end(), extra.begin(), extra.end());
         sort_top_down(r.samples.samples);
-        hung = hang_leaves(*query, r.samples.samples, p);  // the new samples' leaves, in sample order
+        hung = hang_leaves(*query, r.samples.samples, p, blockers);  // the new samples' leaves, in sample order
     }
     // The tree and the columns baseline start from the same leaves (hanging them does not depend
     // on the strategy).
-    SupportTree grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, hung, p); });
+    SupportTree grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, hung, p, blockers); });
     // The user's omitted struts are numbered in the final tree (the one the .scad shows).
     r.supports = sw.time("struts", progress, [&] { return finish_supports(std::move(grown), p, job.edits.omit_struts); });
     Params columns = p;
     columns.strategy = Strategy::columns;
-    r.columns = sw.time("columns baseline", progress, [&] { return finish_supports(grow_tree(*query, hung, columns), columns); });
+    r.columns = sw.time("columns baseline", progress, [&] { return finish_supports(grow_tree(*query, hung, columns, {}, blockers), columns); });
     query.reset();
     if (const auto& st = r.supports.sized.tree.stats; st.dropped)
         r.warnings.push_back(std::to_string(st.dropped) + " overhang samples lie where no strut fits" +

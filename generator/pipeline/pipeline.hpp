@@ -34,8 +34,10 @@ Supports build_supports(const ModelQuery& placed, const std::vector<Sample>& sam
 // greedy choice that helps some models and costs others; the estimate picked PrusaSlicer's faster
 // tree on 9 of 9 models between the first two ways. The columns baseline is grown once (no merges).
 SupportTree grow_cheaper_tree(const ModelQuery& placed, const std::vector<Sample>& samples, const Params& p);
-// The same from the leaves hang_leaves (tree.hpp) hung for the samples.
-SupportTree grow_cheaper_tree(const ModelQuery& placed, const SupportTree& hung, const Params& p);
+// The same from the leaves hang_leaves (tree.hpp) hung for the samples, none entering the user's
+// support blockers (placed-model coordinates).
+SupportTree grow_cheaper_tree(const ModelQuery& placed, const SupportTree& hung, const Params& p,
+                              const std::vector<Box3>& support_blockers = {});
 // Sizes a grown tree into supports: struts in `omit` (indices into `grown`) are pruned with their
 // branches first.
 Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit = {});

@@ -54,16 +54,6 @@ std::vector<Vec3> cone_fan(double critical_angle_deg) {
     return dirs;
 }
 
-std::optional<Vec3> first_hit_in_cone(const ModelQuery& model, const Vec3& apex, double critical_angle_deg) {
-    std::optional<Vec3> best;
-    double best_d = INFINITY;
-    for (const auto& d : cone_fan(critical_angle_deg)) {
-        auto hit = model.first_hit(apex, d);
-        if (hit && hit->distance < best_d) best_d = hit->distance, best = hit->point;
-    }
-    return best;
-}
-
 ConeFan::ConeFan(double critical_angle_deg)
     : dirs(cone_fan(critical_angle_deg)), tan_c(std::tan(deg_to_rad(critical_angle_deg))) {
     vertical_only.assign(dirs.size(), 0);

@@ -30,10 +30,6 @@ Vec3 merge_point(const Vec3& a, const Vec3& b, double tan_c);
 // Unit directions of the cone fan: the axis, then the rings of kTreeTuning (tree/tuning.hpp).
 std::vector<Vec3> cone_fan(double critical_angle_deg);
 
-// Nearest model point inside the downward cone at `apex` that a straight strut can reach,
-// approximated by the cone fan. nullopt when the cone sees only the bed.
-std::optional<Vec3> first_hit_in_cone(const ModelQuery& model, const Vec3& apex, double critical_angle_deg);
-
 // The cone fan with what the sweep asks of it: masks of its vertical and slanted directions and
 // the cosine of its steepest slant.
 struct ConeFan {

@@ -17,7 +17,6 @@ bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec
     // The strut's own edges, and the same pushed out by the clearance (a bump of the model can
     // slip between the outer lines and still cut the strut, so both are asked).
     for (double c : {0.0, clearance}) {
-        if (c == clearance && c == 0.0 && clearance != 0.0) continue;
         double ra = 0.5 * wa + c, rb = 0.5 * wb + c;
         // The built strut reaches past b into its joint: onto the model, that end must stay clear too.
         const Vec3 b_end = onto_model && c == 0.0 ? b + normalized(b - a) * joint_reach : b;
@@ -61,12 +60,13 @@ bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec
     return true;
 }
 
-bool enters_keep_out(const Params& p, const Vec3& a, const Vec3& b, double wb) {
-    if (p.keep_out.empty()) return false;
+bool enters_support_blocker(const Params& p, const std::vector<Box3>& support_blockers, const Vec3& a, const Vec3& b,
+                            double wb) {
+    if (support_blockers.empty()) return false;
     const double reach = joint_overlap(p);
-    if (sweep_meets_boxes(a, b, wb, reach, p.keep_out)) return true;
+    if (sweep_meets_boxes(a, b, wb, reach, support_blockers)) return true;
     return b.z < 1e-6 && p.feet &&
-           sweep_meets_boxes(b, b + Vec3{0, 0, p.foot_height}, wb + 2 * p.foot_extra, 0, p.keep_out);
+           sweep_meets_boxes(b, b + Vec3{0, 0, p.foot_height}, wb + 2 * p.foot_extra, 0, support_blockers);
 }
 
 bool can_escape(const ModelQuery& model, const Params& p, const ConeFan& fan, const Vec3& a, double w) {

@@ -24,8 +24,9 @@ bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec
                     bool onto_model = false, double joint_reach = 0);
 
 // Does a strut from a down to b (width wb at b), reaching half a layer into its joint, or its
-// foot on the bed enter one of the user's support blockers (p.keep_out)?
-bool enters_keep_out(const Params& p, const Vec3& a, const Vec3& b, double wb);
+// foot on the bed enter one of the user's support blockers (placed-model coordinates)?
+bool enters_support_blocker(const Params& p, const std::vector<Box3>& support_blockers, const Vec3& a, const Vec3& b,
+                            double wb);
 
 // Can a strut of width w leave point a at all: is a short strut (kTreeTuning.escape_length) along
 // some fan direction clear, with the z gap's air around it (nearer, it would print fused to the

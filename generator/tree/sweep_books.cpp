@@ -6,7 +6,8 @@
 
 namespace cs {
 
-SweepBooks::SweepBooks(const ModelQuery& model, const Params& p) : model_(model), p_(p), fan_(p.critical_angle) {}
+SweepBooks::SweepBooks(const ModelQuery& model, const Params& p, const std::vector<Box3>& support_blockers)
+    : model_(model), p_(p), support_blockers_(support_blockers), fan_(p.critical_angle) {}
 
 int SweepBooks::add_node(const Vec3& p, NodeKind kind, const Vec3& contact, double width) {
     Node n;
@@ -44,7 +45,7 @@ EndWidths SweepBooks::widths(int from, const Vec3& to) const {
 
 bool SweepBooks::clear(int from, const Vec3& to, double clearance, bool onto_model) const {
     const double air = clearance < 0 ? p_.model_clearance : clearance;
-    return !enters_keep_out(p_, t_.nodes[from].p, to, bottom_width(from, to)) &&
+    return !enters_support_blocker(p_, support_blockers_, t_.nodes[from].p, to, bottom_width(from, to)) &&
            strut_is_clear(model_, t_.nodes[from].p, top_width(from, to), to, bottom_width(from, to), air, onto_model,
                           joint_overlap(p_)) &&
            run_stays_clear(from, to, std::min(air, p_.gap));
@@ -54,11 +55,11 @@ bool SweepBooks::clear(int from, const Vec3& to, double clearance, bool onto_mod
 // one column (struts/): the struts above in the run must still clear the model at that width by
 // the z gap (nearer, they print fused to it).
 bool SweepBooks::run_stays_clear(int from, const Vec3& to, double air) const {
-    if (t_.nodes[from].kind != NodeKind::Chain) return true;
+    if (t_.nodes[from].kind != NodeKind::Bend) return true;
     const double run = books_[from].run + distance(t_.nodes[from].p, to);
     double angle = angle_from_vertical_deg(t_.nodes[from].p, to);
     std::vector<int> above;  // the tops of the run's struts, bottom up
-    for (int v = from; v >= 0 && t_.nodes[v].kind == NodeKind::Chain && books_[v].up.size() == 1;) {
+    for (int v = from; v >= 0 && t_.nodes[v].kind == NodeKind::Bend && books_[v].up.size() == 1;) {
         const int u = books_[v].up[0];
         above.push_back(u);
         angle = std::max(angle, angle_from_vertical_deg(t_.nodes[u].p, t_.nodes[v].p));

@@ -39,7 +39,7 @@ struct SweepNode {
 
 class SweepBooks {
 public:
-    SweepBooks(const ModelQuery& model, const Params& p);
+    SweepBooks(const ModelQuery& model, const Params& p, const std::vector<Box3>& support_blockers);
 
     // A node, with its record: not active, no strut.
     int add_node(const Vec3& p, NodeKind kind, const Vec3& contact, double width);
@@ -70,6 +70,7 @@ public:
 
     const ModelQuery& model_;
     const Params& p_;
+    const std::vector<Box3>& support_blockers_;  // the user's: no tip, strut, foot or pillar inside
     ConeFan fan_;
     SupportTree t_;  // its struts are filled from the links when the sweep ends (struts())
     std::vector<SweepNode> books_;  // parallel to t_.nodes

@@ -29,8 +29,8 @@ double grid_cell(const Params& p) { return std::max(2.0 * p.sampling_distance, 1
 // fits, or steps down, or undoes and drops.
 class Sweep : SweepBooks {
 public:
-    Sweep(const ModelQuery& model, const Params& p, GrowOptions options = {})
-        : SweepBooks(model, p), options_(options), cx_{model, p, fan_, tree()}, active_nodes_(grid_cell(p)) {}
+    Sweep(const ModelQuery& model, const Params& p, const std::vector<Box3>& support_blockers, GrowOptions options = {})
+        : SweepBooks(model, p, support_blockers), options_(options), cx_{model, p, fan_, tree()}, active_nodes_(grid_cell(p)) {}
 
     SupportTree hang_only(const std::vector<Sample>& samples) {
         hang_leaves(samples);
@@ -158,7 +158,7 @@ private:
     // none fits the print bridges the slot (too low) or the sample is given up (too tight).
     PillarFit hang_pillar(const Vec3& sample) {
         auto placed = fit_pillar(model_, sample, p_);
-        if (placed.fit == PillarFit::Fits && sweep_meets_boxes(placed.pillar.top, placed.pillar.bottom, p_.d_min, 0, p_.keep_out))
+        if (placed.fit == PillarFit::Fits && sweep_meets_boxes(placed.pillar.top, placed.pillar.bottom, p_.d_min, 0, support_blockers_))
             return PillarFit::NoRoom;  // it would stand in a user's blocker
         if (placed.fit == PillarFit::Fits) {
             placed.pillar.sample = sample;
@@ -247,7 +247,7 @@ private:
         const double was_width = books_[top].width, was_run = books_[top].run;
         books_[top].width = merged_width(p_, {books_[top].width, bottom_width(id, at)});
         books_[top].run = 0;  // now a branch point: a new run starts here
-        const bool fits = !enters_keep_out(p_, at, to, bottom_width(top, to)) &&
+        const bool fits = !enters_support_blocker(p_, support_blockers_, at, to, bottom_width(top, to)) &&
                           strut_is_clear(model_, at, top_width(top, to), to, bottom_width(top, to), p_.model_clearance,
                                          false, joint_overlap(p_)) &&
                           can_escape(to, merged_width(p_, {books_[below].width, bottom_width(top, to)}));
@@ -318,7 +318,7 @@ private:
 
     using SweepBooks::clear;
     bool clear(int from, const Candidate& c, double clearance = -1) const {
-        if (c.type == Target::Model && sweep_meets_boxes(c.point, c.contact, bottom_width(from, c.point), 0, p_.keep_out))
+        if (c.type == Target::Model && sweep_meets_boxes(c.point, c.contact, bottom_width(from, c.point), 0, support_blockers_))
             return false;  // its contact tip would stand in a blocker
         return clear(from, c.point, clearance, c.type == Target::Model);  // a steep face: no relief
     }
@@ -389,9 +389,9 @@ private:
         for (int parent : books_[id].up) {
             books_[parent].down = -1;
             books_[parent].banned.push_back(id);
-            if (t_.nodes[id].kind == NodeKind::Chain) books_[parent].failed_bends.push_back(t_.nodes[id].p);
+            if (t_.nodes[id].kind == NodeKind::Bend) books_[parent].failed_bends.push_back(t_.nodes[id].p);
             books_[parent].retries = std::max(books_[parent].retries, books_[id].retries) + 1;  // strictly more: it ends
-            if (t_.nodes[id].kind != NodeKind::Chain && t_.stats.merges > 0) --t_.stats.merges;
+            if (t_.nodes[id].kind != NodeKind::Bend && t_.stats.merges > 0) --t_.stats.merges;
             activate(parent);
         }
         books_[id].up.clear();
@@ -403,7 +403,7 @@ private:
             activate(id);
         } else {
             if (books_[id].active) retire(id);
-            if (t_.nodes[id].kind == NodeKind::Chain && t_.stats.steps > 0) --t_.stats.steps;
+            if (t_.nodes[id].kind == NodeKind::Bend && t_.stats.steps > 0) --t_.stats.steps;
             t_.nodes[id].kind = NodeKind::Dropped;
         }
         ++t_.stats.undone;
@@ -511,7 +511,7 @@ private:
             return true;
         }
         retire(id);
-        int c = add_node(best, NodeKind::Chain, {}, bottom_width(id, best));
+        int c = add_node(best, NodeKind::Bend, {}, bottom_width(id, best));
         books_[c].alone = books_[id].alone;
         books_[c].run = books_[id].run + distance(a, best);
         books_[c].retries = books_[id].retries;
@@ -559,16 +559,18 @@ double SupportTree::total_length() const {
 }
 
 SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
-                      GrowOptions options) {
-    return grow_tree(model, hang_leaves(model, samples, p), p, options);
+                      GrowOptions options, const std::vector<Box3>& support_blockers) {
+    return grow_tree(model, hang_leaves(model, samples, p, support_blockers), p, options, support_blockers);
 }
 
-SupportTree grow_tree(const ModelQuery& model, SupportTree hung, const Params& p, GrowOptions options) {
-    return Sweep(model, p, options).run(std::move(hung));
+SupportTree grow_tree(const ModelQuery& model, SupportTree hung, const Params& p, GrowOptions options,
+                      const std::vector<Box3>& support_blockers) {
+    return Sweep(model, p, support_blockers, options).run(std::move(hung));
 }
 
-SupportTree hang_leaves(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p) {
-    return Sweep(model, p).hang_only(samples);
+SupportTree hang_leaves(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
+                        const std::vector<Box3>& support_blockers) {
+    return Sweep(model, p, support_blockers).hang_only(samples);
 }
 
 }  // namespace cs

@@ -2,8 +2,8 @@
 //
 // Every overhang sample hangs a leaf node one tip below it. Sweeping from the highest active node
 // down, each node ranks its candidates (fewest layers left as an island of its own, then
-// shortest): a meeting point with another active node's cone (merge_point), the first model point
-// in its cone (first_hit_in_cone), or the bed straight below.
+// shortest): a meeting point with another active node's cone (merge_point), or where a ray of its
+// cone fan meets the model or the bed (collect_contacts).
 // Each candidate strut is tried against the model with clearance (strut_is_clear); the first that
 // passes wins. With `supports_on_model = false` the model is an obstacle only and nodes route down
 // to the bed around it. The `columns` strategy is the same sweep without merges or slanted struts:
@@ -28,7 +28,7 @@ class ModelQuery;
 enum class NodeKind {
     Leaf,          // below an overhang sample, carries a tip up to it
     Merge,         // where two cones meet
-    Chain,         // a bend on the way out of a tight spot or around the model
+    Bend,          // on the way out of a tight spot or around the model
     Bed,           // on z = 0
     ModelContact,  // above a point of the model; a tip goes down to it
     Dropped,       // given up: no strut fits from here (counted in stats; nothing is built)
@@ -103,25 +103,28 @@ struct SupportTree {
     double total_length() const;
 };
 
-// touching_space and contact_tolerance: core/rules.hpp. merge_point and first_hit_in_cone:
+// touching_space and contact_tolerance: core/rules.hpp. merge_point and collect_contacts:
 // tree/candidates.hpp. strut_is_clear: tree/clearance.hpp.
 
-// Grows the support tree (or the columns baseline, by p.strategy) for the given samples.
+// Grows the support tree (or the columns baseline, by p.strategy) for the given samples. No tip,
+// strut, foot or pillar enters one of the user's `support_blockers` (placed-model coordinates).
 // The sweep (tree.cpp) grows it, keeping one record per node (tree/sweep_books.hpp);
 // tree/candidates.hpp finds where a node may go, tree/clearance.hpp whether it fits,
 // tree/tuning.hpp holds the search's constants. After the sweep, merges of two leaves rise to meet
 // the leaves (their tips leaning towards each other), and merges below them follow
 // (tree/raise_merges.cpp); the tree keeps its shape.
 SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
-                      GrowOptions options = {});
+                      GrowOptions options = {}, const std::vector<Box3>& support_blockers = {});
 // The same, from the leaves hang_leaves hung for these samples (same model and parameters): the
 // leaves are placed once when a tree is grown several ways.
-SupportTree grow_tree(const ModelQuery& model, SupportTree hung, const Params& p, GrowOptions options = {});
+SupportTree grow_tree(const ModelQuery& model, SupportTree hung, const Params& p, GrowOptions options = {},
+                      const std::vector<Box3>& support_blockers = {});
 
 // The tree before it grows: each sample's leaf (its tip placed), pillar, or the reason it has
 // neither (touching, bridged, dropped), exactly as grow_tree starts from them; no struts. What
 // holds the overhang up is known from this alone, so the coverage top-up judges it without
 // growing a tree it would grow again.
-SupportTree hang_leaves(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p);
+SupportTree hang_leaves(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
+                        const std::vector<Box3>& support_blockers = {});
 
 }  // namespace cs

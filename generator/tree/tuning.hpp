@@ -64,7 +64,7 @@ struct TreeTuning {
     // (the supports mesh would not be a set of closed solids where they did).
     double feet_apart = 0.05;
 
-    // ---- prices of the slicer cost model (tree/slicer_cost.hpp), for CuraEngine 4.13 with the
+    // ---- prices of the slicer cost model (estimate_slicer_cost, tree/tree.hpp), for CuraEngine 4.13 with the
     // bench profile (0.2 mm layers, acceleration 1500 mm/s^2, support as a support mesh with one
     // wall and no infill); checked against its G-code in bench/results/tree_shape.md.
     // Each island costs a stop and a start: accelerating to and from a hop of a few mm at

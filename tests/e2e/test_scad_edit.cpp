@@ -112,7 +112,7 @@ TEST(ScadEdit, BlockerKeepsEverySupportSolidOutAndTheRestPassesCheck) {
     const Box3 blocker{{-11, -6, -1}, {-2.2, 6, 10.5}};
     Tee plain;
     ASSERT_TRUE(mesh_enters_box(read_mesh(plain.file(".supports.stl")), blocker)) << "without the blocker, supports are there";
-    Tee blocked("--block -11,-6,-1,-2.2,6,10.5");
+    Tee blocked("--support-blocker -11,-6,-1,-2.2,6,10.5");
     Mesh supports = read_mesh(blocked.file(".supports.stl"));
     ASSERT_FALSE(supports.faces.empty());
     EXPECT_FALSE(mesh_enters_box(supports, blocker));
@@ -284,7 +284,7 @@ TEST(ScadEdit, MalformedEditFlagsAreUsageErrors) {
     TempDir d;
     std::string in = d / "tee.stl";
     write_stl(in, t_shape());
-    for (const std::string flags : {"--block 1,2,3", "--block 0,0,0,1,1,x", "--support-point 1,2", "-D w=3"}) {
+    for (const std::string flags : {"--support-blocker 1,2,3", "--support-blocker 0,0,0,1,1,x", "--support-point 1,2", "-D w=3"}) {
         auto r = cs(quote(in) + " --orient keep -q --out " + quote(d / "o") + " " + flags);
         EXPECT_EQ(r.code, 2) << flags << ": " << r.out;
         EXPECT_NE(r.out.find(flags.substr(0, 2) == "-D" ? "-D" : flags.substr(0, flags.find(' '))), std::string::npos) << r.out;
@@ -301,11 +301,21 @@ TEST(ScadEdit, ConfigBlockersAreTheFlagsBlockers) {
     TempDir d;
     std::string in = d / "tee.stl";
     write_stl(in, t_shape());
-    std::string config = d / "edits.json";
-    write_text(config, R"({"block": [[-11, -6, -1, -2.2, 6, 10.5]]})");
-    ASSERT_EQ(cs(quote(in) + " --orient keep --no-timings -q --out " + quote(d / "a") + " --config " + quote(config)).code, 0);
-    ASSERT_EQ(cs(quote(in) + " --orient keep --no-timings -q --out " + quote(d / "b") + " --block -11,-6,-1,-2.2,6,10.5").code, 0);
-    EXPECT_TRUE(read_text(d / "a/tee.supports.stl") == read_text(d / "b/tee.supports.stl"));
+    auto run_with = [&](const std::string& out, const std::string& args) {
+        return cs(quote(in) + " --orient keep --no-timings -q --out " + quote(d / out) + " " + args).code;
+    };
+    std::string config = d / "edits.json", old_config = d / "old.json";
+    write_text(config, R"({"support-blocker": [[-11, -6, -1, -2.2, 6, 10.5]]})");
+    write_text(old_config, R"({"block": [[-11, -6, -1, -2.2, 6, 10.5]]})");  // the old spelling
+    ASSERT_EQ(run_with("a", "--config " + quote(config)), 0);
+    ASSERT_EQ(run_with("b", "--support-blocker -11,-6,-1,-2.2,6,10.5"), 0);
+    ASSERT_EQ(run_with("c", "--config " + quote(old_config)), 0);
+    ASSERT_EQ(run_with("e", "--block -11,-6,-1,-2.2,6,10.5"), 0);  // the old flag
+    ASSERT_EQ(run_with("n", ""), 0);
+    const std::string blocked = read_text(d / "b/tee.supports.stl");
+    EXPECT_TRUE(blocked != read_text(d / "n/tee.supports.stl")) << "the blocker changes nothing";
+    for (const char* out : {"a", "c", "e"})
+        EXPECT_TRUE(read_text(d / (std::string(out) + "/tee.supports.stl")) == blocked) << out;
 }
 
 // -------------------------------------------------------------------------- .scad in, rendered

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/rules.hpp"
 #include "edit/scad_values.hpp"
 #include "struts/struts.hpp"
 #include "support.hpp"
@@ -77,6 +78,36 @@ void expect_same_widths(const std::string& model, const std::string& extra) {
         // Both size the same decimal data; echo() prints six significant digits (widths < 10 mm).
         EXPECT_NEAR(widths[e][0], sized.struts[e].top_width, 2e-5) << "strut " << e << " upper width";
         EXPECT_NEAR(widths[e][1], sized.struts[e].bottom_width, 2e-5) << "strut " << e << " lower width";
+    }
+}
+
+// The narrowest N-profile strut: the template's cs_min_n_width and the struts stage's rule
+// (core/rules.hpp min_n_width) for walls a Customizer may set.
+TEST(ScadWidths, NarrowestNProfileIsTheStrutsStages) {
+    if (!have_native()) GTEST_SKIP() << "no OpenSCAD";
+    TempDir dir;
+    const std::vector<double> walls = {0.4, 0.5, 0.8, 1.2};
+    const std::string driver = dir / "min_n.scad";
+    {
+        std::ofstream out(driver);
+        out << "include <" << source_dir() << "/scad_templates/clever_support.scad>\n"
+            << "echo(cs_min_n = [";
+        for (size_t i = 0; i < walls.size(); ++i) out << (i ? ", " : "") << "cs_min_n_width(" << walls[i] << ")";
+        out << "]);\n";
+    }
+    auto r = run("openscad -o " + quote(dir / "min_n.echo") + " " + quote(driver));
+    ASSERT_EQ(r.code, 0) << r.out;
+    const std::string echo = read_text(dir / "min_n.echo"), key = "cs_min_n = ";
+    const auto at = echo.find(key);
+    ASSERT_NE(at, std::string::npos) << echo;
+    std::string list = echo.substr(at + key.size(), echo.find_first_of("\r\n", at) - at - key.size());
+    while (!list.empty() && list.back() != ']') list.pop_back();
+    const auto got = nlohmann::json::parse(list);
+    ASSERT_EQ(got.size(), walls.size()) << echo;
+    for (size_t i = 0; i < walls.size(); ++i) {
+        Params p;
+        p.wall_thickness = walls[i];
+        EXPECT_NEAR(got[i].get<double>(), min_n_width(p), 1e-9) << "wall " << walls[i];
     }
 }
 

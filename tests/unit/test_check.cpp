@@ -19,7 +19,7 @@ namespace {
 // The pipeline's pieces, run by hand: sample_overhangs -> grow_tree -> size_struts -> build_bodies.
 std::vector<Body> pipeline_bodies(const Mesh& model, const Params& p) {
     ModelQuery q(model);
-    auto samples = sample_overhangs(model, {p.critical_angle, p.sampling_distance, p.layer_height});
+    auto samples = sample_overhangs(model, overhang_options(p));
     SizedTree sized = size_struts(grow_tree(q, samples.samples, p), p);
     return build_bodies(sized, p);
 }

@@ -59,7 +59,7 @@ SupportTree small_tree() {
     node({0, 0, 10}, NodeKind::Leaf);
     node({2, 0, 10}, NodeKind::Leaf);
     node({1, 0, 8}, NodeKind::Merge);
-    node({1, 0, 4}, NodeKind::Chain);
+    node({1, 0, 4}, NodeKind::Bend);
     node({1, 0, 0}, NodeKind::Bed);
     node({5, 0, 10}, NodeKind::Leaf);
     node({5, 0, 0}, NodeKind::Bed);
@@ -77,7 +77,7 @@ TEST(PruneStruts, AStrutGoesWithEverythingAboveItNodesKeepTheirIndices) {
     EXPECT_EQ(t.struts[1].top, 5);
     EXPECT_EQ(t.nodes.size(), 7u);
     for (int v : {0, 1, 2}) EXPECT_EQ(t.nodes[v].kind, NodeKind::Dropped) << v;
-    EXPECT_EQ(t.nodes[3].kind, NodeKind::Chain) << "still carries strut 3 -> 4";
+    EXPECT_EQ(t.nodes[3].kind, NodeKind::Bend) << "still carries strut 3 -> 4";
     EXPECT_EQ(t.nodes[5].kind, NodeKind::Leaf);
     auto all = prune_struts(small_tree(), {3, 4});
     EXPECT_TRUE(all.struts.empty());

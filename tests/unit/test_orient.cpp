@@ -69,7 +69,7 @@ Orientation orient(const Mesh& m, const std::string& mode = "auto") {
         Placement pl;
         Rotation id;
         Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
-        OverhangOptions oo{p.critical_angle, p.sampling_distance, p.layer_height};
+        const OverhangOptions oo = overhang_options(p);
         auto s = build_supports(placed, sample_overhangs(placed, oo).samples, p);
         return PoseSupport{s.volume, s.sized.tree.stats.model_contacts, bounding_box(placed).size().z};
     });
@@ -85,7 +85,7 @@ double placed_overhang_area(const Mesh& m, const Rotation& r) {
     Placement pl;
     Rotation id;
     Mesh placed = place_on_bed(rotated(m, r), 1.0, id.m, pl);
-    return overhang_area(placed, {50, 1.5, 0.2});
+    return sample_overhangs(placed, {50, 1.5, 0.2}).overhang_area;
 }
 
 // Upright, a T's wings overhang. Plate down or lying on its flat side it needs nothing; of

@@ -10,6 +10,7 @@
 #include "core/errors.hpp"
 #include "mesh/repair.hpp"
 #include "mesh/unfold_caps.hpp"
+#include "mesh/weld.hpp"
 #include "support.hpp"
 
 using namespace cs;
@@ -111,6 +112,34 @@ Mesh cube_with_sliver_along_an_edge() {
     return o.mesh;
 }
 }  // namespace
+
+// mesh/weld: the one weld (repair, check's shells and the 3MF writer all use it).
+TEST(Weld, AnStlCubeWeldsToItsEightCornersInOrderOfFirstAppearance) {
+    const Mesh cube = box({0, 0, 0}, {1, 2, 3});
+    const Mesh soup = to_soup(cube);
+    const Welded w = weld_vertices(soup);
+    ASSERT_EQ(w.mesh.vertices.size(), 8u);
+    ASSERT_EQ(w.mesh.faces.size(), soup.faces.size());
+    ASSERT_EQ(w.remap.size(), soup.vertices.size());
+    std::uint32_t next = 0;  // a vertex seen for the first time gets the next number
+    for (size_t i = 0; i < soup.vertices.size(); ++i) {
+        EXPECT_TRUE(w.mesh.vertices[w.remap[i]] == soup.vertices[i]) << i;
+        if (w.remap[i] == next) ++next;
+        EXPECT_LT(w.remap[i], next) << "numbered out of order at " << i;
+    }
+    for (size_t f = 0; f < soup.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(w.mesh.faces[f][k], w.remap[soup.faces[f][k]]);
+}
+
+TEST(Weld, OnlyEqualCoordinatesWeldAndMinusZeroIsZero) {
+    Mesh m;
+    m.vertices = {{0, 0, 0}, {-0.0, 0, -0.0}, {1e-12, 0, 0}, {1, 1, 1}};
+    m.faces = {{0, 2, 3}, {1, 2, 3}};
+    const Welded w = weld_vertices(m);
+    EXPECT_EQ(w.mesh.vertices.size(), 3u);  // -0 is 0; 1e-12 is not
+    EXPECT_EQ(w.remap[0], w.remap[1]);
+    EXPECT_NE(w.remap[0], w.remap[2]);
+}
 
 TEST(Repair, WeldsStlSoupBox) {
     Mesh soup = to_soup(box({0, 0, 0}, {10, 10, 10}));

@@ -29,7 +29,7 @@ std::unique_ptr<Grown> grow(const Mesh& model, const Params& p) {
     auto g = std::make_unique<Grown>();
     g->model = model;
     g->query = std::make_unique<ModelQuery>(g->model);
-    auto samples = sample_overhangs(g->model, {p.critical_angle, p.sampling_distance, p.layer_height});
+    auto samples = sample_overhangs(g->model, overhang_options(p));
     g->tree = grow_tree(*g->query, samples.samples, p);
     return g;
 }
@@ -40,7 +40,7 @@ SupportTree chain(const std::vector<Vec3>& points) {
     for (size_t i = 0; i < points.size(); ++i) {
         Node n;
         n.p = points[i];
-        n.kind = i == 0 ? NodeKind::Leaf : i + 1 == points.size() ? NodeKind::Bed : NodeKind::Chain;
+        n.kind = i == 0 ? NodeKind::Leaf : i + 1 == points.size() ? NodeKind::Bed : NodeKind::Bend;
         if (i == 0) n.contact = points[0] + Vec3{0, 0, 1.2}, n.tip = points[0] + Vec3{0, 0, 1.0};
         t.nodes.push_back(n);
         if (i > 0) t.struts.push_back({static_cast<int>(i - 1), static_cast<int>(i)});

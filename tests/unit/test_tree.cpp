@@ -46,7 +46,7 @@ std::unique_ptr<Grown> grow(const Mesh& model, const Params& p) {
     auto g = std::make_unique<Grown>();
     g->model = model;
     g->query = std::make_unique<ModelQuery>(g->model);
-    g->samples = sample_overhangs(g->model, {p.critical_angle, p.sampling_distance, p.layer_height});
+    g->samples = sample_overhangs(g->model, overhang_options(p));
     g->tree = grow_tree(*g->query, g->samples.samples, p);
     return g;
 }
@@ -93,7 +93,7 @@ void expect_valid_tree(const Grown& g, const Params& p) {
                 EXPECT_GE(in[v], 2);
                 EXPECT_EQ(out[v], 1);
                 break;
-            case NodeKind::Chain:
+            case NodeKind::Bend:
                 EXPECT_GE(in[v], 1);
                 EXPECT_EQ(out[v], 1);
                 break;
@@ -242,15 +242,6 @@ TEST(TreeHelpers, StrutOntoTheModelKeepsARidgeOutOfItsFoot) {
     EXPECT_FALSE(strut_is_clear(q, {10, 5, 15}, 2, {10, 5, 6}, 2, 0.0, /*onto_model=*/true));
     // The same strut 3 mm away has the ridge outside its square.
     EXPECT_TRUE(strut_is_clear(q, {7, 5, 15}, 2, {7, 5, 6}, 2, 0.0, /*onto_model=*/true));
-}
-
-TEST(TreeHelpers, FirstHitInConeSeesTheModelBelow) {
-    Mesh m = cs::test::box({0, 0, 0}, {10, 10, 5});
-    ModelQuery q(m);
-    auto hit = first_hit_in_cone(q, {5, 5, 12}, 50);
-    ASSERT_TRUE(hit.has_value());
-    EXPECT_NEAR(hit->z, 5, 1e-9);
-    EXPECT_FALSE(first_hit_in_cone(q, {40, 40, 12}, 50).has_value());  // only the bed
 }
 
 // ---------------------------------------------------------------- grow_tree
@@ -555,7 +546,7 @@ TEST(GrowCheaperTree, KeepsTheWayTheSlicerEstimatePrefersUnlessItDropsMore) {
     Params p;
     for (const Mesh& m : {cs::test::table_shape(), cs::test::bridge_shape(), cs::test::cantilever_over_box()}) {
         ModelQuery q(m);
-        const auto samples = sample_overhangs(m, {p.critical_angle, p.sampling_distance, p.layer_height}).samples;
+        const auto samples = sample_overhangs(m, overhang_options(p)).samples;
         auto seconds = [&](const SupportTree& t) {
             const SizedTree sized = size_struts(t, p);
             return estimate_slicer_cost(sized.tree, mean_strut_widths(sized), p).seconds;
@@ -582,7 +573,7 @@ TEST(GrowCheaperTree, KeepsTheWayTheSlicerEstimatePrefersUnlessItDropsMore) {
     columns.strategy = Strategy::columns;
     const Mesh m = cs::test::table_shape();
     ModelQuery q(m);
-    const auto samples = sample_overhangs(m, {columns.critical_angle, columns.sampling_distance, columns.layer_height}).samples;
+    const auto samples = sample_overhangs(m, overhang_options(columns)).samples;
     EXPECT_FALSE(grow_cheaper_tree(q, samples, columns).grown_with.lean_merging_leaves);
 }
 
@@ -639,7 +630,7 @@ TEST(SlicerCost, CountsIslandsOutlineAndTravelPerLayer) {
     // Two 1 mm columns 10 mm apart, 10 mm tall: 50 layers of 0.2 mm, two islands in each.
     Params p;
     SupportTree t;
-    t.nodes = {{{0, 0, 10}, NodeKind::Chain}, {{0, 0, 0}, NodeKind::Bed}, {{10, 0, 10}, NodeKind::Chain},
+    t.nodes = {{{0, 0, 10}, NodeKind::Bend}, {{0, 0, 0}, NodeKind::Bed}, {{10, 0, 10}, NodeKind::Bend},
                {{10, 0, 0}, NodeKind::Bed}};
     t.struts = {{0, 1}, {2, 3}};
     auto c = estimate_slicer_cost(t, {1.0, 1.0}, p);
@@ -650,7 +641,7 @@ TEST(SlicerCost, CountsIslandsOutlineAndTravelPerLayer) {
     EXPECT_GT(c.seconds, 0);
     // Joined half-way into one trunk: fewer islands, less travel, less time.
     SupportTree j;
-    j.nodes = {{{0, 0, 10}, NodeKind::Chain}, {{10, 0, 10}, NodeKind::Chain}, {{5, 0, 5}, NodeKind::Merge},
+    j.nodes = {{{0, 0, 10}, NodeKind::Bend}, {{10, 0, 10}, NodeKind::Bend}, {{5, 0, 5}, NodeKind::Merge},
                {{5, 0, 0}, NodeKind::Bed}};
     j.struts = {{0, 2}, {1, 2}, {2, 3}};
     auto cj = estimate_slicer_cost(j, {1.0, 1.0, 1.26}, p);
@@ -659,7 +650,7 @@ TEST(SlicerCost, CountsIslandsOutlineAndTravelPerLayer) {
     EXPECT_LT(cj.seconds, c.seconds);
     // A wide strut: the slicer walls its square only (it closes the N's narrow holes).
     SupportTree w;
-    w.nodes = {{{0, 0, 1}, NodeKind::Chain}, {{0, 0, 0}, NodeKind::Bed}};
+    w.nodes = {{{0, 0, 1}, NodeKind::Bend}, {{0, 0, 0}, NodeKind::Bed}};
     w.struts = {{0, 1}};
     EXPECT_NEAR(estimate_slicer_cost(w, {3.0}, p).outline_mm, 5 * 4 * 3.0, 1e-9);
 }
