@@ -40,7 +40,7 @@ nlohmann::json customizer_sliders(const std::string& text) {
 
 nlohmann::json edits_json(const ManualEdits& e) {
     nlohmann::json blockers = nlohmann::json::array(), points = nlohmann::json::array();
-    for (const auto& b : e.blockers) blockers.push_back({xyz(b.min), xyz(b.max)});
+    for (const auto& b : e.support_blockers) blockers.push_back({xyz(b.min), xyz(b.max)});
     for (const auto& p : e.support_points) points.push_back(xyz(p));
     return {{"support_blockers", blockers}, {"support_points", points}, {"omit_struts", e.omit_struts}};
 }

@@ -19,7 +19,7 @@ ScadTree tree_from_scad(const ScadValues& values) {
     for (const auto& p : list_of(values, "cs_nodes")) {
         Node node;
         node.p = point_of(p);
-        node.kind = NodeKind::Chain;
+        node.kind = NodeKind::Bend;
         t.nodes.push_back(node);
     }
     const int n = static_cast<int>(t.nodes.size());
