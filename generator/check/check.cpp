@@ -312,8 +312,19 @@ private:
     XyGrid<Vec3> grid_;
 };
 
+// Is an overhang point left out on purpose: inside a blocked box, or would the tip under it (the
+// air gap and a tip length down, a tip diameter wide) reach into one?
+bool left_out(const Vec3& x, const std::vector<Box3>& boxes, const Params& p) {
+    const double half = 0.5 * p.tip_diameter, below = p.gap + p.tip_length;
+    for (const auto& b : boxes)
+        if (x.x >= b.min.x - half && x.x <= b.max.x + half && x.y >= b.min.y - half && x.y <= b.max.y + half &&
+            x.z >= b.min.z && x.z - below <= b.max.z)
+            return true;
+    return false;
+}
+
 void check_coverage(const Mesh& model, const ModelQuery& q, const std::vector<Shell>& shells, const Params& p,
-                    const Tolerances& t, CheckResult& r) {
+                    const Tolerances& t, const std::vector<Box3>& blocked, CheckResult& r) {
     JudgeOverhangs j = judge_overhangs(model, p.critical_angle, p.layer_height, t.spacing);
     NearGrid near(t.reach);
     for (const auto& s : shells)
@@ -334,6 +345,11 @@ void check_coverage(const Mesh& model, const ModelQuery& q, const std::vector<Sh
         if (x.p.z - (hit ? hit->point.z : 0.0) <= t.bridge_height) {
             ++r.exempt;
             near.add(x.p);
+            continue;
+        }
+        if (left_out(x.p, blocked, p)) {
+            ++r.left_out;
+            r.left_out_area += x.area;
             continue;
         }
         need.push_back(&x);
@@ -372,7 +388,8 @@ CheckResult check_supports(const Mesh& model_in, const Mesh& supports, const Par
         check_penetration(q, s, t, r);
     }
     check_grounding(q, shells, t, r);
-    check_coverage(model, q, shells, p, t, r);
+    r.blocked_regions = o.left_out.size();
+    check_coverage(model, q, shells, p, t, o.left_out, r);
     return r;
 }
 

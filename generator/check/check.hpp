@@ -15,6 +15,9 @@
 //               a printable face goes down from it (a wall below carries that edge), cover points
 //               within reach as contacts do. Reported: the largest gap from any overhang point to
 //               its nearest contact or anchor, where it is, and the area beyond reach.
+//               Left out on purpose: points in a region the user blocked (`left_out` boxes: the
+//               run's support blockers, `check --block`), or whose tip (gap plus tip length below
+//               the point, tip diameter wide) would reach into one. They are counted, not failed.
 //  air gap      every contact's gap (the smallest vertical distance from its top to the model) is
 //               at least `gap - gap_tolerance`; a solid fused to the print fails.
 //  penetration  every solid, tips included, is sampled over its faces; no point lies inside the
@@ -45,6 +48,7 @@ struct CheckOptions {
     double gap_tolerance = 0.05;        // mm an air gap may fall short of p.gap (slicers round to 0.01)
     double angle_tolerance = 0.5;       // degrees
     double spacing = 0;                 // mm between the judge's overhang points; 0: min(0.5, reach / 3)
+    std::vector<Box3> left_out;         // regions the user blocked: their overhang needs no contact
 
     // Half the diagonal of a unit square, rounded up: the farthest a point of a flat overhang is
     // from the nearest lattice contact.
@@ -60,6 +64,9 @@ struct Flag {
 struct CheckResult {
     // coverage
     std::size_t overhang_points = 0, covered = 0, exempt = 0;
+    std::size_t left_out = 0;         // of overhang_points: in a blocked region, left out on purpose
+    double left_out_area = 0;         // mm^2 of overhang they stand for
+    std::size_t blocked_regions = 0;
     std::size_t face_points = 0, ridge_points = 0, lowest_points = 0;
     std::size_t contacts = 0;
     double reach = 0;
@@ -83,7 +90,7 @@ struct CheckResult {
     bool model_closed = true;  // with holes, inside is the winding test's fair guess
     std::vector<Flag> flagged;  // first few failures of the solid checks, with places
 
-    bool coverage_ok() const { return covered + exempt == overhang_points; }
+    bool coverage_ok() const { return covered + exempt + left_out == overhang_points; }
     bool gap_ok() const { return fused_contacts == 0; }
     bool ok() const {
         return coverage_ok() && gap_ok() && open_bodies == 0 && inward_bodies == 0 && penetrating_bodies == 0 &&

@@ -29,13 +29,16 @@ std::string format_place(const Vec3& p) {
 
 std::string CheckResult::summary() const {
     std::ostringstream s;
-    s << mark(coverage_ok()) << " coverage     " << covered << " of " << (overhang_points - exempt)
+    s << mark(coverage_ok()) << " coverage     " << covered << " of " << (overhang_points - exempt - left_out)
       << " overhang points have a contact within " << mm(reach) << " mm (" << face_points << " on faces, "
       << ridge_points << " on ridges, " << lowest_points << " lowest points; " << exempt
       << " rest on what is below; " << contacts << " contacts)\n";
     s << "       largest gap to a contact " << mm(largest_gap) << " mm at " << format_place(largest_gap_at) << "; "
       << mm(uncovered_area) << " mm2 of overhang beyond reach\n";
     for (const auto& u : uncovered) s << "       uncovered at " << format_place(u) << "\n";
+    if (blocked_regions)
+        s << "     left out     " << left_out << " overhang points (" << mm(left_out_area) << " mm2) in "
+          << blocked_regions << " blocked region" << (blocked_regions == 1 ? "" : "s") << ": left out on purpose\n";
     s << mark(gap_ok()) << " air gap      " << fused_contacts << " contacts closer to the model than the gap";
     if (min_air_gap < INFINITY) s << " (smallest " << mm(min_air_gap) << " mm at " << format_place(min_air_gap_at) << ")";
     s << "\n";
@@ -62,7 +65,8 @@ std::string CheckResult::json() const {
                      {"exempt", exempt},              {"face_points", face_points}, {"ridge_points", ridge_points},
                      {"lowest_points", lowest_points}, {"contacts", contacts},       {"reach_mm", reach},
                      {"largest_gap_mm", largest_gap}, {"largest_gap_at", xyz(largest_gap_at)},
-                     {"uncovered_area_mm2", uncovered_area}, {"uncovered", unc}};
+                     {"uncovered_area_mm2", uncovered_area}, {"uncovered", unc},
+                     {"left_out_on_purpose", {{"points", left_out}, {"area_mm2", left_out_area}, {"regions", blocked_regions}}}};
     j["air_gap"] = {{"ok", gap_ok()}, {"fused", fused_contacts},
                     {"min_mm", min_air_gap < INFINITY ? nlohmann::ordered_json(min_air_gap) : nlohmann::ordered_json()}};
     j["penetration"] = {{"bodies", penetrating_bodies}, {"max_mm", max_penetration}, {"model_closed", model_closed}};

@@ -1,5 +1,5 @@
-// clever-support command line: generate (default), regrow, check, render, presets; one function
-// per subcommand, and exit_code_for(), the one place errors become messages and exit codes.
+// clever-support command line: generate (default), regrow, check, render, apply, presets; one
+// function per subcommand, and exit_code_for(), the one place errors become messages and exit codes.
 #include <unistd.h>
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -15,8 +15,13 @@
 #include <optional>
 #include <type_traits>
 #include <tbb/global_control.h>
+#include <algorithm>
+#include <filesystem>
 
 #include "check/check.hpp"
+#include "cli/compare.hpp"
+#include "cli/defines.hpp"
+#include "cli/suggest.hpp"
 #include "core/errors.hpp"
 #include "core/param_table.hpp"
 #include "edit/edited_scad.hpp"
@@ -88,7 +93,7 @@ struct ParamFlags {
     Params resolve(const nlohmann::json& cfg) const {
         std::string base = preset;
         if (cfg.contains("preset") && !preset_given) base = cfg["preset"].get<std::string>();
-        Params p = preset_params(base);
+        Params p = known_preset(base);
         if (!cfg.is_null()) {
             apply_config(cfg, p, "--config " + config);
             p.preset = cfg.value("preset", p.preset) + " + " + config;
@@ -96,6 +101,27 @@ struct ParamFlags {
         for (const auto& [row, value] : given) set_param(*row, value, p);
         validate_params(p);
         return p;
+    }
+
+    // The settings of a run (`base`, read from its .scad) with the flags given on top; a --preset
+    // or --config given replaces them as in resolve().
+    Params resolve_over(Params base) const {
+        if (preset_given || !config.empty()) return resolve(load_config());
+        for (const auto& [row, value] : given) set_param(*row, value, base);
+        validate_params(base);
+        return base;
+    }
+
+    // preset_params, with the nearest preset name suggested for a slip.
+    static Params known_preset(const std::string& name) {
+        std::vector<std::string> names;
+        for (const auto& pr : presets()) names.push_back(pr.name);
+        if (std::find(names.begin(), names.end(), name) == names.end()) {
+            std::string known;
+            for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+            throw ParameterError("unknown preset '" + name + "'" + did_you_mean(name, names) + "; known presets: " + known);
+        }
+        return preset_params(name);
     }
 };
 
@@ -200,24 +226,42 @@ struct GenerateArgs {
     std::optional<double> fit;
     bool no_self_intersection_check = false, no_timings = false;
     std::vector<std::string> part_defines, support_blockers, support_points;
+    std::string compare;  // "", cura or prusa
+    bool show_pose = false;
     ParamFlags params;
 };
 
 struct CheckArgs {
+    std::string run;  // a run's folder or .scad: meshes, settings and blockers from there
     std::string model, supports;
+    std::vector<std::string> blocks;
     CheckOptions options;
     bool as_json = false;
     ParamFlags params;
+};
+
+struct RegrowArgs {
+    std::string scad, out_dir;
+    std::vector<std::string> defines;  // the .scad's parameters, by their .scad names
+};
+
+// `apply`: the supports rendered from an edited .scad into the slicer files beside it.
+struct ApplyArgs {
+    std::string scad, openscad;
+    std::vector<std::string> defines;
+    bool quiet = false;
 };
 
 // Everything the command line can say; each subcommand's pointer tells whether it was chosen.
 struct CommandLine {
     GenerateArgs generate;
     RunOptions run;
-    std::string regrow_file;
+    RegrowArgs regrow;
     CheckArgs check;
     RenderOptions render;
-    CLI::App *regrow_cmd = nullptr, *check_cmd = nullptr, *render_cmd = nullptr, *presets_cmd = nullptr;
+    ApplyArgs apply;
+    CLI::App *regrow_cmd = nullptr, *check_cmd = nullptr, *render_cmd = nullptr, *apply_cmd = nullptr,
+             *presets_cmd = nullptr;
     ViewArgs view;
     CLI::App* view_cmd = nullptr;
 };
@@ -252,6 +296,11 @@ void add_generate(CLI::App& app, GenerateArgs& g, RunOptions& o) {
     app.add_flag("--no-timings", g.no_timings, "Leave stage times out of the report: byte-identical reports run to run");
     add_talk_flags(app, o, false);
     g.params.add_to(app);
+    app.add_option("--compare", g.compare,
+                   "cura or prusa: also slice the model with that slicer's own supports and with ours, in a temporary "
+                   "folder, and print both (grams, minutes)")
+        ->check(CLI::IsMember({"cura", "prusa"}));
+    app.add_flag("--show-pose", g.show_pose, "Print how a point of the input maps to the placed model's coordinates");
     app.add_option("-D", g.part_defines, "For a .scad input: OpenSCAD's -D name=value, passed when rendering the part (repeatable)")
         ->allow_extra_args(false);
     auto edits_group = "Manual edits (coordinates of <name>.model.stl)";
@@ -264,11 +313,14 @@ void add_generate(CLI::App& app, GenerateArgs& g, RunOptions& o) {
         ->group(edits_group);
 }
 
-CLI::App* add_regrow(CLI::App& app, std::string& file, RunOptions& o) {
+CLI::App* add_regrow(CLI::App& app, RegrowArgs& r, RunOptions& o) {
     auto* cmd = app.add_subcommand("regrow", "Grow the supports again from a generated .scad that you edited: its\n"
                                              "parameters, [Manual edits] and [Regrow] values; rewrites every output beside it.\n"
-                                             "Example: clever-support regrow out/m/m.scad");
-    cmd->add_option("scad", file, "The generated .scad file")->required();
+                                             "Example: clever-support regrow out/m/m.scad -D sampling=2 --out out/m-try");
+    cmd->add_option("scad", r.scad, "The generated .scad file")->required();
+    cmd->add_option("-D", r.defines, "Override a parameter of the .scad: name=value, e.g. -D sampling=2 (repeatable)")
+        ->allow_extra_args(false);
+    cmd->add_option("--out", r.out_dir, "Write the outputs here instead of beside the .scad");
     add_run_flags(*cmd, o, true);
     add_talk_flags(*cmd, o, true);
     return cmd;
@@ -276,9 +328,16 @@ CLI::App* add_regrow(CLI::App& app, std::string& file, RunOptions& o) {
 
 CLI::App* add_check(CLI::App& app, CheckArgs& c) {
     auto* cmd = app.add_subcommand("check", "Verify supports: coverage, penetration, grounding, closed solids, angles.\n"
-                                            "Example: clever-support check --model m.model.stl --supports m.supports.stl");
-    cmd->add_option("--model", c.model, "Placed model STL")->required();
-    cmd->add_option("--supports", c.supports, "Support STL (separate closed solids)")->required();
+                                            "Example: clever-support check out/m/   (the run's meshes, settings and blockers)\n"
+                                            "         clever-support check --model m.model.stl --supports m.supports.stl");
+    cmd->add_option("run", c.run,
+                    "A run's output folder or its .scad (out/m/ or out/m/m.scad): judges its meshes with the settings "
+                    "and support blockers it was made with");
+    cmd->add_option("--model", c.model, "Placed model STL (default: the run's <name>.model.stl)");
+    cmd->add_option("--supports", c.supports, "Support STL, separate closed solids (default: the run's <name>.supports.stl)");
+    cmd->add_option("--block", c.blocks,
+                    "A region left out on purpose: x0,y0,z0,x1,y1,z1 (repeatable; the run's support_blockers count too)")
+        ->allow_extra_args(false);
     cmd->add_option("--reach", c.options.reach,
                     "Max distance from an overhang point to a contact, mm (default: 0.71 x sampling, the "
                     "largest gap a square lattice of contacts leaves)");
@@ -302,6 +361,17 @@ CLI::App* add_render(CLI::App& app, RenderOptions& r) {
     return cmd;
 }
 
+CLI::App* add_apply(CLI::App& app, ApplyArgs& a) {
+    auto* cmd = app.add_subcommand("apply", "Render the supports of an edited .scad (a Customizer tweak, omit_struts) and\n"
+                                            "rewrite <name>.supports.stl, .supported.stl, .3mf and .prusa.3mf beside it.\n"
+                                            "Example: clever-support apply out/m/m.scad -D k=0.003");
+    cmd->add_option("scad", a.scad, "Generated .scad file")->required();
+    cmd->add_option("-D", a.defines, "Override a value of the .scad: name=value (repeatable)")->allow_extra_args(false);
+    cmd->add_option("--openscad", a.openscad, "OpenSCAD command to use");
+    cmd->add_flag("-q,--quiet", a.quiet, "Print errors only");
+    return cmd;
+}
+
 void describe_app(CLI::App& app) {
     app.footer("Which file to print (in --out):\n"
                "  Cura:         <name>.3mf        supports marked \"print as support\"; import\n"
@@ -316,9 +386,10 @@ void describe_app(CLI::App& app) {
 void add_commands(CLI::App& app, CommandLine& cl) {
     describe_app(app);
     add_generate(app, cl.generate, cl.run);
-    cl.regrow_cmd = add_regrow(app, cl.regrow_file, cl.run);
+    cl.regrow_cmd = add_regrow(app, cl.regrow, cl.run);
     cl.check_cmd = add_check(app, cl.check);
     cl.render_cmd = add_render(app, cl.render);
+    cl.apply_cmd = add_apply(app, cl.apply);
     cl.presets_cmd = app.add_subcommand("presets", "List the printer presets, their values and where those come from.\n"
                                                    "Your own: --config my.json with {\"preset\": \"generic-0.4\", \"sampling\": 2}");
     cl.view_cmd = add_view_command(app, cl.view);
@@ -337,19 +408,161 @@ int cmd_presets() {
     return kExitOk;
 }
 
+void warn(const std::string& w) { std::fprintf(stderr, "clever-support: warning: %s\n", w.c_str()); }
+
+// -D defines for a .scad: each checked (a mistake names the define), a warning for each name the
+// file does not assign (unless `quiet`).
+void check_defines(const std::vector<std::string>& defines, const std::string& scad, bool quiet = false) {
+    for (const auto& d : defines) check_define(d);
+    if (!quiet)
+        for (const auto& w : unknown_define_warnings(defines, scad)) warn(w);
+}
+
 int cmd_render(const RenderOptions& o) {
+    check_defines(o.defines, o.scad);
     auto r = render_scad(o);
     std::printf("rendered %s in %.1f s\n", r.output.c_str(), r.seconds);
+    std::printf("  (the supports STLs and 3MFs are unchanged: `clever-support apply %s` rewrites them from this .scad)\n",
+                o.scad.c_str());
     return kExitOk;
 }
 
+std::string stem_of(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+// The supports of an edited .scad, rendered without the model, into the four files that carry
+// them. Parameters given with -D also set the PrusaSlicer volume's settings.
+int cmd_apply(const ApplyArgs& a) {
+    check_defines(a.defines, a.scad, a.quiet);
+    EditedScad edited = read_edited_scad(a.scad);
+    Params p = edited.job.params;
+    set_scad_params(a.defines, p, /*others_allowed=*/true);
+    const std::string name = stem_of(a.scad), dir = edited.folder;
+    const std::string model_file = dir + "/" + name + ".model.stl";
+    Mesh model = read_mesh(model_file);
+    RenderOptions ro;
+    ro.scad = a.scad;
+    ro.output = dir + "/." + name + ".apply.stl";
+    ro.defines = a.defines;
+    ro.defines.insert(ro.defines.end(), {"show_model=false", "show_supports=true"});
+    ro.openscad = a.openscad;
+    RenderResult rr;
+    Mesh supports;  // empty when every solid was left out (OpenSCAD then renders nothing)
+    try {
+        rr = render_scad(ro);
+        supports = read_mesh(ro.output, /*allow_empty=*/true);
+    } catch (const ExternalToolError& e) {
+        std::remove(ro.output.c_str());
+        if ((std::string(e.what()) + e.log).find("top level object is empty") == std::string::npos) throw;
+    } catch (...) {
+        std::remove(ro.output.c_str());
+        throw;
+    }
+    std::remove(ro.output.c_str());
+    write_outputs(dir, support_mesh_files(name, model, supports, p));
+    if (!a.quiet) {
+        std::printf("applied %s (rendered in %.1f s): rewrote %s/%s.supports.stl, .supported.stl, .3mf, .prusa.3mf\n",
+                    a.scad.c_str(), rr.seconds, dir.c_str(), name.c_str());
+        std::printf("  supports now %.2f g (%.0f mm^3); the report still describes the supports as grown, and\n"
+                    "  solids that touch are one solid now (as check judges them)\n",
+                    signed_volume(supports) / 1000.0 * p.filament_density, signed_volume(supports));
+    }
+    return kExitOk;
+}
+
+// A run's generated .scad: `path` itself, or the one in the folder `path`.
+std::string run_scad(const std::string& path) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!fs::is_directory(path, ec)) {
+        if (!is_scad_input(path))
+            throw UsageError("check " + path + ": give a run's output folder or its .scad (e.g. check out/m/ or check "
+                             "out/m/m.scad), or --model and --supports");
+        return path;
+    }
+    std::vector<std::string> found;
+    for (const auto& e : fs::directory_iterator(path, ec))
+        if (e.path().extension() == ".scad" && e.path().filename() != "clever_support.scad") found.push_back(e.path().string());
+    std::sort(found.begin(), found.end());
+    if (found.size() == 1) return found[0];
+    if (found.empty())
+        throw UsageError("check " + path + ": no generated .scad in this folder; give the folder a run wrote (out/<name>/)");
+    std::string list;
+    for (const auto& f : found) list += " " + f;
+    throw UsageError("check " + path + ": several .scad files here; give one of them:" + list);
+}
+
+// What check judges and with what: the meshes, the settings and the regions left out on purpose.
+struct Judged {
+    std::string model, supports;
+    Params params;
+    std::vector<Box3> left_out;
+    std::string settings_from;  // where the settings come from, for the printed line
+};
+
+Judged judged_run(const CheckArgs& c) {
+    Judged j;
+    if (!c.run.empty()) {
+        const std::string scad = run_scad(c.run);
+        EditedScad edited = read_edited_scad(scad);
+        const std::string stem = edited.folder + "/" + stem_of(scad);
+        j.model = stem + ".model.stl";
+        j.supports = stem + ".supports.stl";
+        j.params = c.params.resolve_over(edited.job.params);
+        j.left_out = edited.job.edits.support_blockers;
+        j.settings_from = c.params.preset_given || !c.params.config.empty() ? "as given" : "read from " + scad;
+        if (!c.params.given.empty() && j.settings_from != "as given") j.settings_from += ", flags on top";
+    } else {
+        if (c.model.empty() || c.supports.empty())
+            throw UsageError("check needs a run: `clever-support check out/m/` (its folder or its .scad), or both --model "
+                             "and --supports");
+        j.params = c.params.resolve(c.params.load_config());
+        j.settings_from = c.params.preset_given || !c.params.config.empty() || !c.params.given.empty()
+                              ? "as given"
+                              : "the default preset: give the run's folder, or the --preset it was made with";
+    }
+    if (!c.model.empty()) j.model = c.model;
+    if (!c.supports.empty()) j.supports = c.supports;
+    for (const auto& b : edits_from({}, "", c.blocks, {}).support_blockers) j.left_out.push_back(b);
+    return j;
+}
+
+// The settings check judged with, as one line (always printed: a verdict means little without them).
+std::string settings_line(const Judged& j, const CheckResult& r) {
+    const Params& p = j.params;
+    char b[512];
+    std::snprintf(b, sizeof b,
+                  "judged with preset %s (%s): critical angle %g deg, layer %g mm, sampling %g mm (reach %.2f mm), "
+                  "gap %g mm, tip %g mm wide, %g mm long; %zu region%s left out on purpose\n",
+                  p.preset.c_str(), j.settings_from.c_str(), p.critical_angle, p.layer_height, p.sampling_distance, r.reach,
+                  p.gap, p.tip_diameter, p.tip_length, j.left_out.size(), j.left_out.size() == 1 ? "" : "s");
+    return b;
+}
+
+nlohmann::ordered_json settings_json(const Judged& j, const CheckResult& r) {
+    const Params& p = j.params;
+    nlohmann::ordered_json boxes = nlohmann::ordered_json::array();
+    for (const auto& b : j.left_out) boxes.push_back({{b.min.x, b.min.y, b.min.z}, {b.max.x, b.max.y, b.max.z}});
+    return {{"preset", p.preset}, {"from", j.settings_from}, {"model", j.model}, {"supports", j.supports},
+            {"critical_angle_deg", p.critical_angle}, {"layer_height_mm", p.layer_height},
+            {"sampling_distance_mm", p.sampling_distance}, {"reach_mm", r.reach}, {"gap_mm", p.gap},
+            {"tip_diameter_mm", p.tip_diameter}, {"tip_length_mm", p.tip_length}, {"left_out", boxes}};
+}
+
 int cmd_check(const CheckArgs& c) {
-    Params p = c.params.resolve(c.params.load_config());
+    const Judged j = judged_run(c);
     RepairReport rr;
-    Mesh model = repair_mesh(read_mesh(c.model), c.model, rr);
-    Mesh sup = read_mesh(c.supports, /*allow_empty=*/true);
-    auto res = check_supports(model, sup, p, c.options);
-    std::printf("%s", c.as_json ? (res.json() + "\n").c_str() : res.summary().c_str());
+    Mesh model = repair_mesh(read_mesh(j.model), j.model, rr);
+    Mesh sup = read_mesh(j.supports, /*allow_empty=*/true);
+    CheckOptions options = c.options;
+    options.left_out = j.left_out;
+    auto res = check_supports(model, sup, j.params, options);
+    if (c.as_json) {
+        auto out = nlohmann::ordered_json::parse(res.json());
+        out["settings"] = settings_json(j, res);
+        std::printf("%s\n", out.dump(2).c_str());
+    } else {
+        std::printf("%s%s", settings_line(j, res).c_str(), res.summary().c_str());
+    }
     return res.ok() ? kExitOk : kExitCheckFailed;
 }
 
@@ -388,17 +601,18 @@ void render_extras(const std::string& stem, const RunOptions& o) {
 // Warnings, the outputs (into `dir`, default out/<name>), the report or summary, then the extras.
 int finish_run(const Result& r, const Job& job, std::string dir, const RunOptions& o) {
     if (!o.quiet)
-        for (const auto& w : r.warnings) std::fprintf(stderr, "clever-support: warning: %s\n", w.c_str());
+        for (const auto& w : r.warnings) warn(w);
     if (dir.empty()) dir = "out/" + r.name;
     write_outputs(dir, output_files(r, job, CS_VERSION));
     if (o.as_json) std::printf("%s", report_json(r, job).c_str());
-    else if (!o.quiet) std::printf("%s", human_summary(r, dir).c_str());
+    else if (!o.quiet) std::printf("%s", human_summary(r, job, dir).c_str());
     render_extras(dir + "/" + r.name, o);
     return kExitOk;
 }
 
 int cmd_generate(const GenerateArgs& g, const RunOptions& o) {
     if (g.input.empty()) throw UsageError("no input mesh given. Example: clever-support model.stl (see --help)");
+    if (is_scad_input(g.input)) check_defines(g.part_defines, g.input, o.quiet);
     Job job;
     job.input = g.input;
     job.defines = g.part_defines;
@@ -410,11 +624,23 @@ int cmd_generate(const GenerateArgs& g, const RunOptions& o) {
     const nlohmann::json config = g.params.load_config();  // read once: parameters and edits
     job.params = g.params.resolve(config);
     job.edits = edits_from(config, g.params.config, g.support_blockers, g.support_points);
-    return finish_run(run_showing_progress(job, o), job, g.out_dir, o);
+    const Result r = run_showing_progress(job, o);
+    const std::string dir = g.out_dir.empty() ? "out/" + r.name : g.out_dir;
+    const int code = finish_run(r, job, dir, o);
+    if (g.show_pose && !o.as_json) std::printf("  design -> placed: %s\n", pose_mapping(r.placement).c_str());
+    if (!g.compare.empty()) {
+        if (!o.quiet && !o.as_json && isatty(2)) std::fprintf(stderr, "  slicing with %s for --compare...\n", g.compare.c_str());
+        const SlicerComparison c = compare_with_slicer(g.compare, dir, r.name, job.params);
+        if (!c.done) warn("--compare " + g.compare + ": " + comparison_line(c));
+        else if (!o.as_json && !o.quiet) std::printf("  compare     %s\n", comparison_line(c).c_str());
+    }
+    return code;
 }
 
-int cmd_regrow(const std::string& file, const RunOptions& o) {
+int cmd_regrow(const RegrowArgs& a, const RunOptions& o) {
+    const std::string& file = a.scad;
     EditedScad edited = read_edited_scad(file);
+    set_scad_params(a.defines, edited.job.params, /*others_allowed=*/false);
     const Job& job = edited.job;
     Result r = run_showing_progress(job, o);
     // The run hashed the input as it read it: no second read of a big mesh for this note.
@@ -426,16 +652,71 @@ int cmd_regrow(const std::string& file, const RunOptions& o) {
         r.warnings.push_back("the model is placed differently than when " + file +
                              " was written (the part, its scale or the orientation changed): check that the support "
                              "blockers and points still sit where you meant them");
-    return finish_run(r, job, edited.folder, o);
+    return finish_run(r, job, a.out_dir.empty() ? edited.folder : a.out_dir, o);
 }
 
 int run_command(const CommandLine& cl) {
     if (cl.presets_cmd->parsed()) return cmd_presets();
     if (cl.render_cmd->parsed()) return cmd_render(cl.render);
+    if (cl.apply_cmd->parsed()) return cmd_apply(cl.apply);
     if (cl.check_cmd->parsed()) return cmd_check(cl.check);
-    if (cl.regrow_cmd->parsed()) return cmd_regrow(cl.regrow_file, cl.run);
+    if (cl.regrow_cmd->parsed()) return cmd_regrow(cl.regrow, cl.run);
     if (cl.view_cmd->parsed()) return run_view_command(cl.view);
     return cmd_generate(cl.generate, cl.run);
+}
+
+std::vector<std::string> subcommand_names(const CLI::App& app) {
+    std::vector<std::string> names;
+    for (const CLI::App* s : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(s->get_name());
+    return names;
+}
+
+// A first word that is no file and looks like no file name is a subcommand mistyped
+// (`clever-support chek --model ...`), not a mesh to read.
+void reject_unknown_subcommand(const CLI::App& app, int argc, char** argv) {
+    if (argc < 2) return;
+    const std::string first = argv[1];
+    std::error_code ec;
+    if (first.empty() || first[0] == '-' || first.find_first_of("./") != std::string::npos ||
+        std::filesystem::exists(first, ec))
+        return;
+    const auto names = subcommand_names(app);
+    if (std::find(names.begin(), names.end(), first) != names.end()) return;
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw UsageError("unknown subcommand '" + first + "'" + did_you_mean(first, names) + ". The subcommands are " + list +
+                     "; to grow supports, give a model file (" + mesh_formats_text() + " or .scad). Run `clever-support --help` "
+                     "for usage.");
+}
+
+// The options a command takes, as typed: --long and -s.
+std::vector<std::string> option_names(const CLI::App& app) {
+    std::vector<std::string> names;
+    for (const CLI::Option* opt : app.get_options()) {
+        for (const auto& l : opt->get_lnames()) names.push_back("--" + l);
+        for (const auto& s : opt->get_snames()) names.push_back("-" + s);
+    }
+    return names;
+}
+
+// Arguments nobody took, in the order typed, with the nearest option for each unknown --flag.
+std::string unexpected_arguments(const CLI::App& app) {
+    const CLI::App* cmd = &app;
+    for (const CLI::App* s : app.get_subcommands()) cmd = s;
+    const auto known = option_names(*cmd);
+    std::vector<std::string> extras = app.remaining(true);
+    std::string msg;
+    for (const auto& a : extras) {
+        if (a.size() > 1 && a[0] == '-') {
+            const std::string flag = a.substr(0, a.find('='));
+            msg += (msg.empty() ? "" : "; ") + ("unknown option " + flag + did_you_mean(flag, known));
+        }
+    }
+    if (msg.empty()) {
+        for (const auto& a : extras) msg += (msg.empty() ? "" : " ") + a;
+        msg = "not expected: " + msg;
+    }
+    return msg + ". Run `clever-support " + (cmd == &app ? "" : cmd->get_name() + " ") + "--help` for usage.";
 }
 
 // One run builds and drops many buffers of megabytes (the mesh, its index, the 3MF XML and its
@@ -459,15 +740,21 @@ int main(int argc, char** argv) {
                  "  clever-support model.stl                       # supports into out/model/\n"
                  "  clever-support --fit 80 --render scan.obj      # scale to 80 mm, render the SCAD too\n"
                  "  clever-support --preset replicator2-pla --orient keep part.stl\n"
-                 "  clever-support check --model out/m/m.model.stl --supports out/m/m.supports.stl\n"
-                 "  clever-support render out/m/m.scad -D k=0.003\n"
+                 "  clever-support check out/m/                     # the run's meshes, settings and blockers\n"
+                 "  clever-support apply out/m/m.scad -D k=0.003    # a tweak into the STLs and 3MFs\n"
+                 "  clever-support --compare prusa part.stl         # and PrusaSlicer's own supports beside ours\n"
                  "  clever-support part.scad -D width=30 --support-blocker 0,0,0,10,10,20\n"
                  "  clever-support regrow out/m/m.scad              # after editing it\n",
                  "clever-support"};
     CommandLine cl;
     add_commands(app, cl);
     try {
-        app.parse(argc, argv);
+        reject_unknown_subcommand(app, argc, argv);
+        try {
+            app.parse(argc, argv);
+        } catch (const CLI::ExtrasError&) {
+            throw UsageError(unexpected_arguments(app));
+        }
         return run_command(cl);
     } catch (const CLI::Success& e) {  // --help, --version
         return app.exit(e);

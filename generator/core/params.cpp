@@ -53,6 +53,7 @@ const std::vector<Preset>& presets() {
         petg.critical_angle = 45;  // PETG sags more and runs with less fan
         petg.gap = 0.25;           // PETG sticks to itself: PrusaSlicer's PETG profiles widen the z gap
         petg.sampling_distance = 2.0;
+        petg.filament_density = 1.27;  // PETG is a little denser than PLA
         v.push_back({"prusa-mk4-petg", "Prusa MK3S/MK4, 0.4 mm nozzle, PETG (less cooling, stickier)", petg,
                      "angle 45: PETG runs with less fan and sags sooner; gap 0.25: PrusaSlicer's PETG profiles widen "
                      "the support z gap because PETG fuses to itself"});

@@ -20,6 +20,7 @@ struct Params {
     double line_width = 0.4;      // nozzle extrusion width (informative; walls use wall_thickness)
     double wall_thickness = 0.5;  // wall of the N-profile: slicers drop 0.4 mm walls (CuraEngine kept 9-16 % of
                                   // such struts, all of them at 0.5 mm; measured with bench/slicers/)
+    double filament_density = 1.24;  // g/cm^3 of the preset's material (PLA 1.24, PETG 1.27): the summary's grams
 
     // Sampling and contacts.
     double sampling_distance = 2.5;  // overhang sample spacing on the global XY lattice (chosen by bench)
@@ -44,6 +45,9 @@ struct Params {
     bool supports_on_model = true;       // false = --buildplate-only
     Strategy strategy = Strategy::tree;
     double model_clearance = 0.3;        // extra air kept between a strut and the model
+    // Holes and slots the print bridges (every point of their overhang within reach of an inside
+    // corner, a wall going down from it) get no support unless this is true (overhang.hpp).
+    bool support_bridges = false;
     // A user's edits to one job (support blockers, support points, omitted struts) are no
     // parameters: they travel in the Job (job/job.hpp).
     // Flags, config keys, valid ranges, report keys and .scad names of these: core/param_table.hpp.

@@ -29,6 +29,10 @@ double merged_width(const Params& p, const std::vector<double>& widths);
 double strength_width(const Params& p, double length, double angle_deg);
 // Safe length of a strut of width `d` at `angle_deg` (inverse of strength_width).
 double safe_length(const Params& p, double d, double angle_deg);
+// Beyond this length-to-width a lone strut (no other joins it on its way down) that the strength
+// rule still passes is a thin rod that sways under the nozzle (the hook's 50 mm buildplate-only
+// strut, 26.8): the run warns (pipeline).
+inline constexpr double kComfortableLengthToWidth = 20;
 
 // strut_end_widths combines them for one strut; nothing else in the generator may.
 

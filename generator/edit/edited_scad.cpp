@@ -14,6 +14,8 @@ class Reader {
 public:
     Reader(ScadValues values, std::string file) : v_(std::move(values)), file_(std::move(file)) {}
 
+    bool has(const std::string& name) const { return v_.count(name) > 0; }
+
     const ScadValue& get(const std::string& name) const {
         auto it = v_.find(name);
         if (it == v_.end())
@@ -66,12 +68,22 @@ private:
     std::string file_;
 };
 
+// Parameters added after files were written (2026-11, issue 31): a file without them keeps its
+// preset's value, as it was made with.
+bool added_later(const std::string& name) { return name == "cs_filament_density" || name == "support_bridges"; }
+
 // Every parameter under its .scad name (core/param_table.hpp), each read as its row's kind.
 Params read_params(const Reader& r) {
     Params p;
     p.preset = r.text("cs_preset");
+    for (const auto& pr : presets())
+        if (pr.name == p.preset) p = pr.params;
     for (const auto& row : param_table()) {
         const std::string name = row.scad.name;
+        if (added_later(name) && !r.has(name)) {
+            if (name == "support_bridges") set_param(row, true, p);  // such a file supported bridged holes
+            continue;
+        }
         ParamValue value;
         if (std::holds_alternative<double Params::*>(row.member)) value = r.number(name);
         else if (std::holds_alternative<Strategy Params::*>(row.member)) value = r.text(name);
@@ -95,7 +107,7 @@ int check_tree(const Reader& r) {
         r.index(s[0], line, what + ": top node", n);
         r.index(s[1], line, what + ": bottom node", n);
     }
-    return static_cast<int>(struts.value.size());
+    return static_cast<int>(struts.value.size() + r.list("cs_pillars").value.size());  // pillars numbered after struts
 }
 
 ManualEdits read_edits(const Reader& r, int struts) {
@@ -117,7 +129,7 @@ ManualEdits read_edits(const Reader& r, int struts) {
         e.support_points.push_back(r.point(points.value[i], r.line_of(points, i), "support_points[" + std::to_string(i) + "]"));
     const auto& omit = r.list("omit_struts");
     for (size_t i = 0; i < omit.value.size(); ++i)
-        e.omit_struts.push_back(r.index(omit.value[i], r.line_of(omit, i), "omit_struts: strut", struts));
+        e.omit_struts.push_back(r.index(omit.value[i], r.line_of(omit, i), "omit_struts: strut or pillar", struts));
     const auto& hl = r.get("highlight_strut");
     if (!(hl.value.is_number() && hl.value.get<double>() == -1))
         e.highlight_strut = r.index(hl.value, hl.line, "highlight_strut: strut", struts);

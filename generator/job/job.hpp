@@ -17,7 +17,8 @@ namespace cs {
 struct ManualEdits {
     std::vector<Box3> support_blockers;  // no support solid inside; overhangs inside are not sampled
     std::vector<Vec3> support_points;  // extra points to support, on the model's underside
-    std::vector<int> omit_struts;      // struts of the grown tree left out, with what hangs from them
+    std::vector<int> omit_struts;      // struts of the grown tree left out, with what hangs from them;
+                                       // from the strut count on, pillars (pillar i: struts + i)
     int highlight_strut = -1;          // shown in colour in the .scad; no effect on the supports
 
     bool empty() const { return support_blockers.empty() && support_points.empty() && omit_struts.empty(); }

@@ -18,6 +18,7 @@ namespace cs {
 struct Supports {
     SizedTree sized;
     std::vector<Strut> grown_struts;  // before omit_struts pruned them: the numbering edits refer to
+    std::vector<Pillar> grown_pillars;  // likewise; pillar i is solid grown_struts.size() + i
     std::vector<Body> bodies;
     Mesh mesh;
     double volume = 0;         // of the support solid, overlaps at joints counted once (solid_volume), mm^3
@@ -51,5 +52,12 @@ struct Result {
 // The placement as 13 numbers: scale, the rotation's rows, the translation. A user's edits are
 // in the placed model's coordinates: a regrow compares these to know whether they still fit.
 std::vector<double> pose_numbers(const Placement& placement);
+
+// The placement in words, for the summary and the .scad header:
+//   "scaled 1, rotated 90.0 deg about X, then 0.0 about Y, then 0.0 about Z, then moved by (-10.00, 4.00, 12.50) mm"
+std::string pose_in_words(const Placement& placement);
+// How to map a point of the design (the input file's coordinates) to the placed model's (those
+// of <name>.model.stl, the coordinates of --block, --support-point and the .scad's edits).
+std::string pose_mapping(const Placement& placement);
 
 }  // namespace cs

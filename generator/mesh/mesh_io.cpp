@@ -483,11 +483,13 @@ Mesh read_mesh(const std::string& path, bool allow_empty, std::string* contents)
     struct stat st{};
     if (stat(path.c_str(), &st) != 0)
         fail(path, std::string("cannot open: ") + std::strerror(errno), "Check the path.");
-    if (S_ISDIR(st.st_mode)) fail(path, "is a directory, not a mesh file", "Give the path of an " + mesh_formats_text() + " file.");
+    if (S_ISDIR(st.st_mode))
+        fail(path, "is a directory, not a mesh file",
+             "Give the path of an " + mesh_formats_text() + " file, or of an OpenSCAD part (.scad).");
     std::string ext = extension_of(path);
     if (std::find(mesh_formats().begin(), mesh_formats().end(), ext) == mesh_formats().end())
         fail(path, "unknown format" + (ext.empty() ? std::string(" (no file extension)") : " '." + ext + "'"),
-             "Use an " + mesh_formats_text() + " file.");
+             "Use an " + mesh_formats_text() + " file, or an OpenSCAD part (.scad).");
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(path, std::string("cannot read: ") + std::strerror(errno), "Check the file's permissions.");
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

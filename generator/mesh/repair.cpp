@@ -1,6 +1,8 @@
 #include "mesh/repair.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <cstring>
 #include <numeric>
 #include <unordered_map>
@@ -358,6 +360,14 @@ void rotation_from_euler_deg(double rx, double ry, double rz, double out[3][3]) 
                       {sz * cy, sz * sy * sx + cz * cx, sz * sy * cx - cz * sx},
                       {-sy, cy * sx, cy * cx}};
     std::memcpy(out, R, sizeof(R));
+}
+
+Vec3 euler_deg_from_rotation(const double r[3][3]) {
+    auto deg = [](double rad) { return rad * 180.0 / std::numbers::pi; };
+    const double sy = std::clamp(-r[2][0], -1.0, 1.0);
+    if (std::abs(sy) > 1 - 1e-9)  // y at +-90: x and z turn about the same axis; x taken as 0
+        return {0, deg(std::asin(sy)), deg(std::atan2(-r[0][1], r[1][1]))};
+    return {deg(std::atan2(r[2][1], r[2][2])), deg(std::asin(sy)), deg(std::atan2(r[1][0], r[0][0]))};
 }
 
 Mesh place_on_bed(const Mesh& m, double scale, const double rotation[3][3], Placement& pl) {

@@ -47,6 +47,9 @@ struct Placement {
 
 // Rotation matrix for Euler angles in degrees, applied X then Y then Z (as OpenSCAD's rotate([x,y,z])).
 void rotation_from_euler_deg(double rx, double ry, double rz, double out[3][3]);
+// The inverse: angles {x, y, z} in degrees (-180..180; y in -90..90) with
+// rotation_from_euler_deg(x, y, z) == r. Where y is +-90 degrees, x is 0.
+Vec3 euler_deg_from_rotation(const double r[3][3]);
 
 // Applies scale and rotation, then translates so min z = 0 and the XY bounding box is centred at
 // the origin. Fills `placement` with what was applied.

@@ -127,6 +127,7 @@ std::string report_json(const Result& r, const Job& job) {
     json rot = json::array();
     for (const auto& row : r.orientation.rotation.m) rot.push_back({row[0], row[1], row[2]});
     Vec3 size = bounding_box(r.model).size();
+    const Vec3 rx = euler_deg_from_rotation(pl.rotation);
     json cands = json::array();
     for (size_t i = 0; i < r.orientation.candidates.size(); ++i) {
         const auto& c = r.orientation.candidates[i];
@@ -140,9 +141,11 @@ std::string report_json(const Result& r, const Job& job) {
                       {"orientation", to_string(r.orientation.mode)},
                       {"decided_by", r.orientation.decided_by},
                       {"rotation", rot},
+                      {"rotation_deg", {rx.x, rx.y, rx.z}},
                       {"translation_mm", {pl.translation.x, pl.translation.y, pl.translation.z}},
                       {"size_mm", {size.x, size.y, size.z}},
-                      {"candidates", cands}};
+                      {"candidates", cands},
+                      {"how_to_map", pose_mapping(pl)}};
     j["model"] = {{"volume_mm3", signed_volume(r.model)}, {"triangles", r.model.faces.size()}};
     size_t counts[4] = {0, 0, 0, 0};
     for (const auto& s : r.samples.samples) ++counts[static_cast<int>(s.kind)];
@@ -170,27 +173,33 @@ std::string report_json(const Result& r, const Job& job) {
     return j.dump(2) + "\n";
 }
 
-std::vector<OutputFile> output_files(const Result& r, const Job& job, const std::string& version) {
+std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& model, const Mesh& supports,
+                                           const Params& p) {
     std::vector<OutputFile> files;
-    files.push_back({r.name + ".supported.stl", [&r] {
-                         Mesh supported = r.model;
-                         append(supported, r.supports.mesh);
+    files.push_back({name + ".supported.stl", [&model, &supports] {
+                         Mesh supported = model;
+                         append(supported, supports);
                          return encode_stl(supported, "clever-support: model + supports");
                      }});
-    files.push_back({r.name + ".supports.stl", [&r] { return encode_stl(r.supports.mesh, "clever-support: supports"); }});
+    files.push_back({name + ".supports.stl", [&supports] { return encode_stl(supports, "clever-support: supports"); }});
+    files.push_back({name + ".3mf", [name, &model, &supports] {
+                         return encode_3mf_cura(name, {{name + " model", model, {}},
+                                                       {name + " supports", supports, cura_support_mesh_settings()}});
+                     }});
+    files.push_back({name + ".prusa.3mf", [name, &model, &supports, &p] {
+                         return encode_3mf_prusa(name, {{name + " model", model, {}},
+                                                        {name + " supports", supports, prusa_support_volume_settings(p)}});
+                     }});
+    return files;
+}
+
+std::vector<OutputFile> output_files(const Result& r, const Job& job, const std::string& version) {
+    std::vector<OutputFile> files = support_mesh_files(r.name, r.model, r.supports.mesh, job.params);
     files.push_back({r.name + ".model.stl", [&r] { return encode_stl(r.model, "clever-support: placed model"); }});
-    files.push_back({r.name + ".3mf", [&r] {
-                         return encode_3mf_cura(r.name, {{r.name + " model", r.model, {}},
-                                                         {r.name + " supports", r.supports.mesh, cura_support_mesh_settings()}});
-                     }});
-    files.push_back({r.name + ".prusa.3mf", [&r, &job] {
-                         return encode_3mf_prusa(r.name, {{r.name + " model", r.model, {}},
-                                                          {r.name + " supports", r.supports.mesh, prusa_support_volume_settings(job.params)}});
-                     }});
     files.push_back({r.name + ".report.json", [&r, &job] { return report_json(r, job); }});
     files.push_back({r.name + ".scad", [&r, &job, version] {
                          ScadMeta meta{version, r.input_sha256, absolute_path(job.input), r.name + ".model.stl",
-                                       pose_numbers(r.placement)};
+                                       pose_numbers(r.placement), pose_in_words(r.placement)};
                          return emit_scad(r.supports, job, meta);
                      }});
     files.push_back({"clever_support.scad", [] { return scad_template_library(); }});
@@ -241,19 +250,25 @@ void write_outputs(const std::string& dir, const std::vector<OutputFile>& files)
         if (!b.empty()) ::unlink(b.c_str());
 }
 
-std::string human_summary(const Result& r, const std::string& dir) {
+double support_grams(const Supports& s, const Params& p) { return s.volume / 1000.0 * p.filament_density; }
+
+std::string human_summary(const Result& r, const Job& job, const std::string& dir) {
     const auto& st = r.supports.sized.tree.stats;
     std::string s;
     Vec3 size = bounding_box(r.model).size();
     s += fmt::format("{}: {:.1f} x {:.1f} x {:.1f} mm, orientation {} ({})\n", r.name, size.x, size.y, size.z,
                      to_string(r.orientation.mode), r.orientation.decided_by);
+    s += fmt::format("  pose        {}\n", pose_in_words(r.placement));
     if (!r.input_contents.empty()) s += fmt::format("  input       {}\n", r.input_contents);
     s += fmt::format("  overhangs   {:.0f} mm^2, {} samples\n", r.samples.overhang_area, r.samples.samples.size());
     s += fmt::format("  tree        {} struts, {} merges, {} on the bed, {} on the model, {} pillars\n",
                      r.supports.sized.tree.struts.size(), st.merges, st.bed_contacts, st.model_contacts, st.pillars);
-    s += fmt::format("  support     {:.0f} mm^3, {:.0f} mm of struts\n", r.supports.volume, r.supports.length);
-    double saved = r.columns.volume > 0 ? 100 * (1 - r.supports.volume / r.columns.volume) : 0;
-    s += fmt::format("  vs columns  {:.0f} mm^3 -> {:.1f}% less support material\n", r.columns.volume, saved);
+    const Params& p = job.params;
+    const double seconds = estimate_slicer_cost(r.supports.sized.tree, mean_strut_widths(r.supports.sized), p).seconds;
+    s += fmt::format("  support     {:.2f} g of filament ({:.0f} mm^3 at {:g} g/cm^3), about {:.1f} min of printing "
+                     "added (estimate)\n",
+                     support_grams(r.supports, p), r.supports.volume, p.filament_density, seconds / 60);
+    s += fmt::format("              {:.0f} mm of struts\n", r.supports.length);
     double total = 0;
     for (const auto& x : r.stages) total += x.seconds;
     s += fmt::format("  time        {:.2f} s\n", total);

@@ -34,10 +34,20 @@ std::string report_json(const Result& r, const Job& job);
 // outlive them).
 std::vector<OutputFile> output_files(const Result& r, const Job& job, const std::string& version);
 
+// The four files that carry the supports: <name>.supported.stl, .supports.stl, .3mf (Cura) and
+// .prusa.3mf (`p` gives the PrusaSlicer volume's settings). output_files writes them after a run,
+// `clever-support apply` from a rendered .scad. The meshes and `p` must outlive the files.
+std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& model, const Mesh& supports,
+                                           const Params& p);
+
 // Creates `dir` if needed and writes all files atomically as a set. Throws OutputError.
 void write_outputs(const std::string& dir, const std::vector<OutputFile>& files);
 
-// A short human summary of a run for stdout.
-std::string human_summary(const Result& r, const std::string& dir);
+// Grams of filament the supports take: their volume times the preset's filament density.
+double support_grams(const Supports& s, const Params& p);
+
+// A short human summary of a run for stdout: size, pose, tree, support grams and the minutes they
+// add (estimate_slicer_cost, tree.hpp), outputs and what to print.
+std::string human_summary(const Result& r, const Job& job, const std::string& dir);
 
 }  // namespace cs

@@ -72,7 +72,11 @@ std::string header(const Supports& sp, const Job& job, const ScadMeta& meta) {
     s += fmt::format("// {} nodes, {} struts, {} tips, {} model contacts, {} bed contacts, {} pillars\n", t.nodes.size(),
                      t.struts.size(), std::count_if(t.nodes.begin(), t.nodes.end(), [](const Node& n) { return n.kind == NodeKind::Leaf; }),
                      t.stats.model_contacts, t.stats.bed_contacts, t.pillars.size());
+    if (!meta.pose_words.empty())
+        s += "// pose: " + meta.pose_words + "\n//   (cs_pose below; edits are in these placed coordinates, those of " +
+             meta.model_file + ")\n";
     s += "// Render: openscad -o out.stl --export-format binstl THIS.scad  (or: clever-support render THIS.scad)\n";
+    s += "// After a Customizer tweak: clever-support apply THIS.scad rewrites the supports STLs and 3MFs from it.\n";
     s += "// Tweak: open in OpenSCAD's Customizer, or pass -D name=value on the command line.\n";
     s += "// Edit by hand: [Manual edits] and [Regrow] below take effect with `clever-support regrow THIS.scad`,\n";
     s += "// which grows the tree again and rewrites every output in this folder.\n\n";
@@ -110,7 +114,8 @@ std::string manual_edits(const ManualEdits& e) {
     s += "support_points = [";
     for (size_t i = 0; i < e.support_points.size(); ++i) s += (i ? ",\n  " : "\n  ") + exact_pt(e.support_points[i]);
     s += e.support_points.empty() ? "];\n" : "\n];\n";
-    s += "// Struts to leave out (indices in cs_struts below), with everything that hangs from them\n";
+    s += "// Struts to leave out (indices in cs_struts below), with everything that hangs from them, and\n"
+         "// pillars (their numbers in cs_pillars)\n";
     s += "omit_struts = [";
     for (size_t i = 0; i < e.omit_struts.size(); ++i) s += (i ? ", " : "") + std::to_string(e.omit_struts[i]);
     s += "];\n";
@@ -139,6 +144,7 @@ std::string provenance(const Job& job, const ScadMeta& meta) {
         {"cs_preset", scad_string(p.preset)},
         {"cs_layer_height", scad_number(p.layer_height)},
         {"cs_line_width", scad_number(p.line_width)},
+        {"cs_filament_density", scad_number(p.filament_density)},
         {"cs_strategy", scad_string(to_string(p.strategy))},
         {"cs_orient", scad_string(job.orient)},
         {"cs_scale", scad_number(job.scale)},
@@ -168,8 +174,10 @@ std::string tree_data(const Supports& sp) {
         } else if (n.kind == NodeKind::Bed)
             beds.push_back({id, fmt::format("[{}, {}]", i, std::isfinite(n.room) ? num(n.room) : std::string("1e9"))});
     }
-    for (size_t i = 0; i < t.pillars.size(); ++i)
-        pillars.push_back({std::to_string(i), "[" + pt(t.pillars[i].top) + ", " + pt(t.pillars[i].bottom) + "]"});
+    // Numbered after the struts: omit_struts leaves a pillar out by that number.
+    for (size_t i = 0; i < sp.grown_pillars.size(); ++i)
+        pillars.push_back({std::to_string(sp.grown_struts.size() + i),
+                           "[" + pt(sp.grown_pillars[i].top) + ", " + pt(sp.grown_pillars[i].bottom) + "]"});
 
     std::string s = "// The tree. Node kinds (comments) are derived by the library from the lists below.\n";
     s += "// [x, y, z] of every node\n" + record_list("cs_nodes", nodes);
@@ -177,7 +185,8 @@ std::string tree_data(const Supports& sp) {
     s += "// [leaf node, [x, y, z] overhang sample above it, [x, y, z] top of its tip]\n" + record_list("cs_leaves", leaves);
     s += "// [contact node, [x, y, z] bottom of its tip, a gap above the model]\n" + record_list("cs_contacts", contacts);
     s += "// [bed node, room: horizontal distance to the model, which limits its foot]\n" + record_list("cs_beds", beds);
-    s += "// [[x, y, z] top, [x, y, z] bottom]: too short for a tree, d_min up to a tip\n" + record_list("cs_pillars", pillars);
+    s += "// [[x, y, z] top, [x, y, z] bottom]: too short for a tree, d_min up to a tip; numbered after the\n"
+         "// struts (omit_struts takes these numbers too)\n" + record_list("cs_pillars", pillars);
     s += "// How far a strut reaches into the joint below it (mm)\ncs_overlap = " + num(sp.sized.overlap) + ";\n";
     s += "cs_tree_record = [cs_nodes, cs_struts, cs_leaves, cs_contacts, cs_beds, cs_pillars, cs_overlap];\n\n";
     return s;

@@ -27,6 +27,7 @@ struct ScadMeta {
     std::string input_path;  // absolute: where `regrow` finds the input again
     std::string model_file;  // imported, relative to the .scad
     std::vector<double> pose;  // pose_numbers of the placement
+    std::string pose_words;    // pose_in_words of the placement, for the header
 };
 
 std::string emit_scad(const Supports& supports, const Job& job, const ScadMeta& meta);

@@ -237,7 +237,7 @@ std::vector<Vec3> edge_points(const EdgeSegment& e, double step) {
 }  // namespace
 
 OverhangOptions overhang_options(const Params& p) {
-    return {p.critical_angle, p.sampling_distance, p.layer_height, touching_space(p)};
+    return {p.critical_angle, p.sampling_distance, p.layer_height, touching_space(p), p.support_bridges};
 }
 
 double coverage_reach(double sampling_distance) { return std::sqrt(0.5) * sampling_distance; }
@@ -346,6 +346,25 @@ void fill_demand(const Demand& d, const OverhangOptions& o, Needs needs, Rests r
         if (needs(x, INFINITY)) add(x, SampleKind::GapFill);
 }
 
+// Is the lattice point `p` one the print bridges: is every demand point it would cover (within the
+// full reach, on its surface) already carried by the inside corners in `anchors`? Then its
+// sample would hold up nothing the walls do not: a horizontal hole or a narrow slot.
+bool bridged(const Vec3& p, const XyGrid<Vec3>& demand, const CoverGrid& anchors, double reach, double angle) {
+    if (!anchors.covered(p)) return false;
+    const long rings = static_cast<long>(std::ceil(reach / demand.cell()));
+    return !demand.visit_near(p, rings, [&](const Vec3& x) { return covers(p, x, reach, angle) && !anchors.covered(x); });
+}
+
+// The demand points of the faces, rims and minima in an XY grid (for `bridged`).
+XyGrid<Vec3> demand_grid(const Demand& d, double cell) {
+    XyGrid<Vec3> g(cell);
+    for (const auto& x : d.minima) g.insert(x, x);
+    for (const auto& pts : d.along)
+        for (const auto& x : pts) g.insert(x, x);
+    for (const auto& x : d.faces) g.insert(x, x);
+    return g;
+}
+
 }  // namespace
 
 void sort_top_down(std::vector<Sample>& samples) {
@@ -366,11 +385,23 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
     // below gets no contact, but the overhang is printed onto that material there and bridges
     // from it, as from an inside corner (`check` judges it so at the same lattice points).
     CoverGrid lattice{reach, o.critical_angle}, grid{lean_reach(o), o.critical_angle};
-    for (const auto& p : lattice_samples(m, cls, s, res))
-        if (p.z >= o.bed_height) res.samples.push_back({p, SampleKind::Face}), lattice.add(p);
+    std::vector<Vec3> lattice_points = lattice_samples(m, cls, s, res);
     res.edges = support_edges(m, cls, o, res);
     for (const auto& a : res.anchors) grid.add(a);
     const Demand demand = coverage_demand(m, cls, res.edges, o, kEdgeStepOfReach);
+    // Holes and slots the print bridges: the anchors (at the lean reach) carry all their lattice
+    // point would, so it gets no sample. Judged before any sample is placed: only the walls count.
+    if (!o.support_bridges && !res.anchors.empty()) {
+        OverhangOptions judged = o;
+        judged.sampling_distance = o.bridge_sampling > 0 ? o.bridge_sampling : o.sampling_distance;
+        const double bridge_reach = coverage_reach(judged.sampling_distance);
+        CoverGrid walls{lean_reach(judged), o.critical_angle};
+        for (const auto& a : res.anchors) walls.add(a);
+        const XyGrid<Vec3> near = demand_grid(demand, bridge_reach);
+        std::erase_if(lattice_points, [&](const Vec3& p) { return bridged(p, near, walls, bridge_reach, o.critical_angle); });
+    }
+    for (const auto& p : lattice_points)
+        if (p.z >= o.bed_height) res.samples.push_back({p, SampleKind::Face}), lattice.add(p);
     res.point_overhangs = demand.minima.size();
 
     // A point needs a sample near it unless it lies in the first layer, is covered, or rests on

@@ -11,7 +11,10 @@
 // rims and downward ridges (one sample per 2 * reach of edge, placed as far along the edge as still
 // covers the first uncovered point), and gap fills inside faces (a face point the lattice and the
 // rims miss; also small faces that catch no lattice point). Inside corners where an overhang meets
-// a wall going down need no sample and cover their neighbours within reach. Points with material
+// a wall going down need no sample and cover their neighbours within reach; a lattice point whose
+// every neighbour within reach is so covered (a hole or slot the print bridges: a horizontal screw
+// hole, a slot up to about twice the reach wide) gets no sample either, unless `support_bridges`.
+// Points with material
 // within touching space below need no sample; lattice points among them cover their neighbours
 // (the overhang bridges from the material there), other points do not.
 // Coverage is judged on fine demand points (the lattice refined 16 times, rims at an eighth of the
@@ -58,6 +61,9 @@ struct OverhangOptions {
     double bed_height = 0.2;        // samples below this lie in the first layer: printed on the bed
     double touching_space = 0.6;    // free space below a point under which it rests on what is below
                                     // (the tree's touching_space: two z gaps and a layer)
+    bool support_bridges = false;   // true: lattice points in holes the print bridges keep their samples
+    double bridge_sampling = 0;     // the spacing whose reach judges what bridges (0: sampling_distance);
+                                    // orientation scores poses at twice the spacing, holes at the run's
 };
 
 // The sampling's options for a printer's parameters: its critical angle, sample spacing, first

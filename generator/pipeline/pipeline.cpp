@@ -14,6 +14,7 @@
 #include "core/errors.hpp"
 #include "core/sha256.hpp"
 #include "core/param_table.hpp"
+#include "core/rules.hpp"
 #include "mesh/mesh_io.hpp"
 #include "render/render.hpp"
 #include "query/model_query.hpp"
@@ -85,7 +86,8 @@ double scale_to_mm(Mesh& mesh, const Job& job, std::vector<std::string>& warning
 Orientation orient_by_support(const Mesh& scaled, const Params& p, const std::string& orient) {
     Params coarse = p;
     coarse.sampling_distance = 2 * p.sampling_distance;
-    const OverhangOptions coarse_oo = overhang_options(coarse);
+    OverhangOptions coarse_oo = overhang_options(coarse);
+    coarse_oo.bridge_sampling = p.sampling_distance;  // holes judged at the run's spacing
     // A user's support blockers are in the chosen pose's coordinates: no pose is judged with them.
     return choose_orientation(scaled, p, orient, [&](const Mesh& rotated) {
         Placement pl;
@@ -136,6 +138,7 @@ SupportTree grow_cheaper_tree(const ModelQuery& q, const SupportTree& hung, cons
 Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit) {
     Supports s;
     s.grown_struts = grown.struts;
+    s.grown_pillars = grown.pillars;
     const std::optional<SlicerCost> priced = omit.empty() ? grown.slicer_cost : std::nullopt;
     s.sized = size_struts(prune_struts(std::move(grown), omit), p);
     s.slicer_cost = priced ? *priced : estimate_slicer_cost(s.sized.tree, mean_strut_widths(s.sized), p);
@@ -150,16 +153,26 @@ Supports finish_supports(SupportTree grown, const Params& p, const std::vector<i
 SupportTree prune_struts(SupportTree t, const std::vector<int>& omit) {
     if (omit.empty()) return t;
     t.slicer_cost.reset();  // priced with the struts now pruned
-    const int count = static_cast<int>(t.struts.size());
+    const int count = static_cast<int>(t.struts.size()), pillars = static_cast<int>(t.pillars.size());
     std::vector<std::vector<int>> in(t.nodes.size());
     for (int e = 0; e < count; ++e) in[t.struts[e].bottom].push_back(e);
-    std::vector<char> gone(count, 0);
+    std::vector<char> gone(count, 0), pillar_gone(pillars, 0);
     std::vector<int> stack;
     for (int e : omit) {
-        if (e < 0 || e >= count)
-            throw ParameterError("omit_struts: " + std::to_string(e) + " is not a strut (the tree has " + std::to_string(count) +
-                                 " struts, 0 to " + std::to_string(count - 1) + ")");
-        stack.push_back(e);
+        if (e < 0 || e >= count + pillars)
+            throw ParameterError(fmt::format("omit_struts: {} is not a strut or a pillar (the tree has {} struts{}, and {} "
+                                             "pillars{})",
+                                             e, count, count ? fmt::format(", 0 to {}", count - 1) : "", pillars,
+                                             pillars ? fmt::format(", {} to {}", count, count + pillars - 1) : ""));
+        if (e >= count) pillar_gone[e - count] = 1;
+        else stack.push_back(e);
+    }
+    if (std::find(pillar_gone.begin(), pillar_gone.end(), 1) != pillar_gone.end()) {
+        std::vector<Pillar> kept;
+        for (int i = 0; i < pillars; ++i)
+            if (!pillar_gone[i]) kept.push_back(t.pillars[i]);
+        t.stats.pillars -= t.pillars.size() - kept.size();
+        t.pillars = std::move(kept);
     }
     while (!stack.empty()) {  // up the branch: every strut into the top of a gone strut goes too
         int e = stack.back();
@@ -207,6 +220,86 @@ std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samp
     for (const auto& s : samples)
         if (!std::binary_search(carried.begin(), carried.end(), s.p, before)) out.push_back(s.p);
     return out;
+}
+
+// Support points (as edited_samples snaps them onto the model) that no leaf or pillar carries in
+// the finished tree: where no strut fits. One warning each, with where it is.
+std::vector<std::string> untipped_support_points(const ModelQuery& q, const SupportTree& t, const ManualEdits& e,
+                                                 const Params& p) {
+    std::vector<Vec3> carried;
+    for (const auto& n : t.nodes)
+        if (n.kind == NodeKind::Leaf) carried.push_back(n.contact);
+    for (const auto& pl : t.pillars) carried.push_back(pl.sample);
+    std::vector<std::string> out;
+    for (const Vec3& given : e.support_points) {
+        const Vec3 on = q.closest_point(given);
+        if (rests_on_material(q, on, touching_space(p))) continue;  // needs no tip: material right below
+        auto same = [&](const Vec3& c) { return c.x == on.x && c.y == on.y && c.z == on.z; };
+        if (std::any_of(carried.begin(), carried.end(), same)) continue;
+        out.push_back(fmt::format("support point [{}, {}, {}] (on the model at ({:.2f}, {:.2f}, {:.2f})) got no tip: no "
+                                  "strut fits under it{}; move it, or remove what is in the way",
+                                  given.x, given.y, given.z, on.x, on.y, on.z,
+                                  p.supports_on_model ? "" : " that reaches the bed"));
+    }
+    return out;
+}
+
+// A shell of the placed model that stands neither on the bed nor against another shell (their
+// boxes apart): a stray piece that prints on supports alone.
+std::vector<std::string> floating_shells(const Mesh& model, double bed_z, const std::string& input) {
+    int count = 0;
+    const std::vector<int> comp = face_components(model, count);
+    if (count < 2) return {};
+    std::vector<Box3> boxes(count);
+    for (size_t f = 0; f < model.faces.size(); ++f)
+        for (auto v : model.faces[f]) boxes[comp[f]].add(model.vertices[v]);
+    auto apart = [](const Box3& a, const Box3& b) {
+        return a.max.x < b.min.x || b.max.x < a.min.x || a.max.y < b.min.y || b.max.y < a.min.y || a.max.z < b.min.z ||
+               b.max.z < a.min.z;
+    };
+    std::vector<std::string> out;
+    for (int i = 0; i < count; ++i) {
+        if (boxes[i].min.z <= bed_z) continue;
+        bool alone = true;
+        for (int j = 0; j < count && alone; ++j) alone = j == i || apart(boxes[i], boxes[j]);
+        if (!alone) continue;
+        const Vec3 c = (boxes[i].min + boxes[i].max) * 0.5, size = boxes[i].size();
+        out.push_back(fmt::format("{}: a shell of {:.1f} x {:.1f} x {:.1f} mm at ({:.1f}, {:.1f}, {:.1f}) floats {:.1f} mm "
+                                  "above the bed, apart from the rest of the model: it prints on supports alone. If it "
+                                  "is a stray piece, remove it from the model",
+                                  input, size.x, size.y, size.z, c.x, c.y, c.z, boxes[i].min.z));
+    }
+    return out;
+}
+
+// A lone strut: a leaf's way down to the bed or the model that no other strut joins, much longer
+// than it is wide. Nothing braces it: it sways under the nozzle where the strength rule still
+// passes it (the hook's 50 mm buildplate-only strut). The most slender one, with where it is.
+std::string lone_strut_warning(const SizedTree& sized, bool buildplate_only) {
+    const auto& t = sized.tree;
+    double worst = 0, worst_length = 0, worst_width = 0;
+    Vec3 top, bottom;
+    for (size_t leaf = 0; leaf < t.nodes.size(); ++leaf) {
+        if (t.nodes[leaf].kind != NodeKind::Leaf) continue;
+        double length = 0, width = INFINITY;
+        int n = static_cast<int>(leaf), e = sized.out_strut[n];
+        bool joined = false;
+        for (; e >= 0 && !joined; e = sized.out_strut[n]) {
+            length += sized.struts[e].length;
+            width = std::min(width, sized.struts[e].top_width);
+            n = t.struts[e].bottom;
+            joined = sized.in_struts[n].size() > 1;
+        }
+        if (joined || length == 0 || !(width > 0)) continue;
+        if (const double ratio = length / width; ratio > worst)
+            worst = ratio, worst_length = length, worst_width = width, top = t.nodes[leaf].p, bottom = t.nodes[n].p;
+    }
+    if (worst <= kComfortableLengthToWidth) return "";
+    return fmt::format("a lone strut from ({:.1f}, {:.1f}, {:.1f}) down to ({:.1f}, {:.1f}, {:.1f}) is {:.0f} mm long and "
+                       "{:.1f} mm wide (length-to-width {:.1f}, over {:g}, the strength rule's comfortable range) and "
+                       "no other strut braces it: it may sway or snap while printing. Raise --d-min{}",
+                       top.x, top.y, top.z, bottom.x, bottom.y, bottom.z, worst_length, worst_width, worst,
+                       kComfortableLengthToWidth, buildplate_only ? ", or let supports stand on the model (no --buildplate-only)" : "");
 }
 
 }  // namespace
@@ -334,7 +427,10 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     Params columns = p;
     columns.strategy = Strategy::columns;
     r.columns = sw.time("columns baseline", progress, [&] { return finish_supports(grow_tree(*query, hung, columns, {}, blockers), columns); });
+    for (auto& w : untipped_support_points(*query, r.supports.sized.tree, job.edits, p)) r.warnings.push_back(std::move(w));
     query.reset();
+    for (auto& w : floating_shells(r.model, 0.5 * p.layer_height, input)) r.warnings.push_back(std::move(w));
+    if (auto w = lone_strut_warning(r.supports.sized, !p.supports_on_model); !w.empty()) r.warnings.push_back(std::move(w));
     if (const auto& st = r.supports.sized.tree.stats; st.dropped)
         r.warnings.push_back(std::to_string(st.dropped) + " overhang samples lie where no strut fits" +
                              (p.supports_on_model ? "" : " (or can reach the bed)") +

@@ -43,8 +43,9 @@ SupportTree grow_cheaper_tree(const ModelQuery& placed, const SupportTree& hung,
 Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit = {});
 
 // The tree without the struts in `omit` and everything that hangs from them (the struts above, up
-// to the leaves). Nodes keep their indices; those left without a strut become Dropped. Throws
-// ParameterError for an index that is not a strut of the tree.
+// to the leaves), and without the pillars in `omit` (pillar i is index struts + i). Nodes keep
+// their indices; those left without a strut become Dropped. Throws ParameterError for an index
+// that is neither a strut nor a pillar of the tree.
 SupportTree prune_struts(SupportTree tree, const std::vector<int>& omit);
 
 // The samples a user's edits leave: none inside a blocker or whose tip would pass through one,

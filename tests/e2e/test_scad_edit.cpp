@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -418,6 +419,69 @@ TEST(ScadEdit, EditedScadRendersOnDebian2021AndOnManifold) {
     // And regrowing it applies every edit.
     auto r = cs("regrow -q " + quote(t.scad));
     EXPECT_EQ(r.code, 0) << r.out;
+}
+
+// -------------------------------------------------------------------------- the first hour (issue 31)
+
+// A Customizer tweak reaches every file a slicer opens: `apply` renders the supports from the
+// edited .scad and rewrites the supports STLs and both 3MFs (the model and the report stay).
+TEST(ScadEdit, ApplyBringsATweakIntoTheSlicerFiles) {
+    if (!have_openscad()) GTEST_SKIP() << "no OpenSCAD";
+    TempDir d;
+    write_stl(d / "tee.stl", t_shape());
+    const std::string out = d / "out";
+    ASSERT_EQ(cs(quote(d / "tee.stl") + " --orient keep -q --out " + quote(out)).code, 0);
+    const std::string model_before = read_text(out + "/tee.model.stl"), report_before = read_text(out + "/tee.report.json");
+    const double volume_before = signed_volume(read_mesh(out + "/tee.supports.stl"));
+    std::map<std::string, std::string> before;
+    for (const char* f : {"tee.supports.stl", "tee.supported.stl", "tee.3mf", "tee.prusa.3mf"}) before[f] = read_text(out + "/" + f);
+    auto r = cs("apply " + quote(out + "/tee.scad") + " -D d_min=2");
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("rewrote"), std::string::npos) << r.out;
+    for (const auto& [f, bytes] : before) EXPECT_NE(read_text(out + "/" + f), bytes) << f << " should change";
+    EXPECT_EQ(read_text(out + "/tee.model.stl"), model_before);
+    EXPECT_EQ(read_text(out + "/tee.report.json"), report_before);
+    const Mesh supports = read_mesh(out + "/tee.supports.stl");
+    EXPECT_GT(signed_volume(supports), 1.5 * volume_before) << "2 mm struts instead of 1 mm";
+    const Mesh supported = read_mesh(out + "/tee.supported.stl");
+    EXPECT_EQ(supported.faces.size(), read_mesh(out + "/tee.model.stl").faces.size() + supports.faces.size());
+    for (const auto& e : fs::directory_iterator(out)) EXPECT_EQ(e.path().filename().string().rfind(".", 0), std::string::npos)
+        << "no temporary left: " << e.path();
+    // `render` says the slicer files are unchanged and where to go.
+    auto rendered = cs("render " + quote(out + "/tee.scad"));
+    EXPECT_NE(rendered.out.find("clever-support apply"), std::string::npos) << rendered.out;
+}
+
+TEST(ScadEdit, ADefineThePartHasNotIsWarnedOf) {
+    if (!have_openscad()) GTEST_SKIP() << "no OpenSCAD";
+    TempDir d;
+    write_text(d / "part.scad", kPart);
+    auto r = cs(quote(d / "part.scad") + " -D ww=16 --orient keep --out " + quote(d / "a"));
+    EXPECT_EQ(r.code, 0) << r.out;
+    EXPECT_NE(r.out.find("has no variable `ww` (did you mean `w`?)"), std::string::npos) << r.out;
+    auto fine = cs(quote(d / "part.scad") + " -D w=16 --orient keep --out " + quote(d / "b"));
+    EXPECT_EQ(fine.out.find("has no variable"), std::string::npos) << fine.out;
+}
+
+// The maker's two parts (tests/data/parts): their screw holes bridge, so by default they get no
+// support there, and check, judging the run, agrees; --support-bridges true puts it back.
+TEST(ScadEdit, TheMakersPartsGetNoSupportInTheirScrewHoles) {
+    if (!have_openscad()) GTEST_SKIP() << "no OpenSCAD";
+    for (const std::string part : {"rod_clip", "wall_hook"}) {
+        TempDir d;
+        const std::string scad = source_dir() + "/tests/data/parts/" + part + ".scad";
+        auto now = cs(quote(scad) + " --out " + quote(d / "now"));
+        ASSERT_EQ(now.code, 0) << now.out;
+        auto old = cs(quote(scad) + " --support-bridges true -q --out " + quote(d / "old"));
+        ASSERT_EQ(old.code, 0) << old.out;
+        auto samples = [&](const std::string& dir) {
+            return nlohmann::json::parse(read_text(dir + "/" + part + ".report.json"))["overhangs"]["samples"].get<int>();
+        };
+        EXPECT_EQ(samples(d / "now"), 0) << part;
+        EXPECT_GT(samples(d / "old"), 0) << part;
+        auto judged = cs("check " + quote(d / "now"));
+        EXPECT_EQ(judged.code, 0) << part << "\n" << judged.out;
+    }
 }
 
 }  // namespace

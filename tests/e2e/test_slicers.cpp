@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <iostream>
+#include <regex>
+
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -319,6 +322,30 @@ TEST(Slicers, CuraEnginePrintsOurThreeMfOnAnEnder3WithoutLosingATip) {
     EXPECT_EQ(placed["dropped"].get<int>(), 0) << placed.dump();
     EXPECT_GT(shifted["dropped"].get<int>(), placed["body_layers"].get<int>() / 4) << shifted.dump();
     EXPECT_GT(plain["dropped"].get<int>(), placed["body_layers"].get<int>() / 10) << plain.dump();
+}
+
+// ---------------------------------------------------------------------------------------------
+// --compare (issue 31): the summary's measured line, from a real slice of each kind.
+
+TEST(Slicers, CompareSlicesTheSlicersOwnSupportsAndOurs) {
+    for (const std::string slicer : {"prusa", "cura"}) {
+        if (!have(slicer == "prusa" ? "prusa-slicer" : "CuraEngine")) {
+            std::cout << "[ SKIPPED  ] --compare " << slicer << ": the slicer is not installed\n";
+            continue;
+        }
+        TempDir d;
+        Mesh t = box({-3, -3, 0}, {3, 3, 12});
+        append(t, box({-14, -5, 12}, {14, 5, 15}));
+        write_stl(d / "tee.stl", t);
+        auto r = run(quote(cli()) + " " + quote(d / "tee.stl") + " --orient keep --compare " + slicer + " --out " +
+                     quote(d / "out"));
+        ASSERT_EQ(r.code, 0) << r.out;
+        std::smatch m;
+        ASSERT_TRUE(std::regex_search(r.out, m, std::regex(R"(your slicer's own supports \((PrusaSlicer grid|CuraEngine normal)\): ([0-9.-]+) g, ([0-9.-]+) min; ours: ([0-9.-]+) g, ([0-9.-]+) min)")))
+            << r.out;
+        // Both add material and time to the print without supports.
+        for (int i = 2; i <= 5; ++i) EXPECT_GT(std::stod(m[i]), 0) << slicer << ": " << m[0];
+    }
 }
 
 }  // namespace

@@ -8,8 +8,11 @@
 #include <set>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "core/errors.hpp"
 #include "mesh/mesh_io.hpp"
+#include "mesh/repair.hpp"
 #include "shapes.hpp"
 #include "support.hpp"
 
@@ -432,4 +435,230 @@ TEST(Cli, CheckWithABadModelFileExitsThree) {
 TEST(Cli, CheckWithoutArgumentsIsAUsageError) {
     CliRun r = cli("check");
     EXPECT_EQ(r.code, kExitUsage) << r.out;
+}
+
+// ---------------------------------------------------------------- the first hour (issue 31)
+// What a new user meets, typed as they type it: the summary's grams and minutes, check on a run's
+// folder, bridged holes, edits, warnings, words for mistakes, the pose.
+
+namespace {
+
+// A 12 x 10 x 6 block with a tunnel `width` mm wide through it along y (floor z 2, ceiling z 4):
+// a horizontal slot the printer bridges. With --orient keep.
+std::string write_tunnel(const TempDir& dir, double width = 2) {
+    const double w = width / 2;
+    cs::test::CellGrid g({-6, -w, w, 6}, {-5, 5}, {0, 2, 4, 6});
+    g.fill({-6, -5, 0}, {6, 5, 2});
+    g.fill({-6, -5, 4}, {6, 5, 6});
+    g.fill({-6, -5, 2}, {-w, 5, 4});
+    g.fill({w, -5, 2}, {6, 5, 4});
+    std::string path = dir / "tunnel.stl";
+    write_stl(path, g.mesh());
+    return path;
+}
+
+nlohmann::json report_of(const std::string& out, const std::string& stem) {
+    return nlohmann::json::parse(read_file(out + "/" + stem + ".report.json"));
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+    auto at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
+}  // namespace
+
+TEST(FirstHour, SummaryGivesGramsAndMinutesNotColumns) {
+    TempDir tmp;
+    std::string out = tmp / "out";
+    CliRun r = cli(quote(write_good_mesh(tmp)) + " --orient keep --out " + quote(out));
+    ASSERT_EQ(r.code, 0) << r.out;
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(r.out, m, std::regex(R"(support +([0-9.]+) g of filament \(([0-9]+) mm\^3 at 1.24 g/cm\^3\), about ([0-9.]+) min of printing added)")))
+        << r.out;
+    auto report = report_of(out, "tee");
+    const double volume = report["supports"]["support_volume_mm3"], seconds = report["supports"]["slicer_estimate"]["seconds"];
+    EXPECT_NEAR(std::stod(m[1]), volume / 1000 * 1.24, 0.006) << r.out;
+    EXPECT_NEAR(std::stod(m[3]), seconds / 60, 0.06) << r.out;
+    EXPECT_GT(std::stod(m[3]), 0);
+    EXPECT_FALSE(contains(r.out, "vs columns")) << r.out;  // moved to the report
+    EXPECT_TRUE(report["saving_vs_columns"].contains("volume"));
+    EXPECT_EQ(report["parameters"]["filament_density_g_cm3"], 1.24);
+    // The preset's density: PETG weighs more for the same volume.
+    CliRun petg = cli(quote(write_good_mesh(tmp)) + " --orient keep --preset prusa-mk4-petg --out " + quote(tmp / "petg"));
+    EXPECT_TRUE(contains(petg.out, "at 1.27 g/cm^3")) << petg.out;
+}
+
+TEST(FirstHour, CheckTakesTheRunFolderWithItsPreset) {
+    TempDir tmp;
+    std::string out = tmp / "out";
+    ASSERT_EQ(cli(quote(write_good_mesh(tmp)) + " --orient keep --preset prusa-mk4-pla --out " + quote(out)).code, 0);
+    for (const std::string& run : {out, out + "/", out + "/tee.scad"}) {
+        CliRun r = cli("check " + quote(run));
+        EXPECT_EQ(r.code, 0) << run << "\n" << r.out;
+        EXPECT_TRUE(contains(r.out, "judged with preset prusa-mk4-pla (read from " + out + "/tee.scad)")) << r.out;
+        EXPECT_TRUE(contains(r.out, "critical angle 55 deg")) << r.out;
+    }
+    // Both meshes typed: the settings it used are said, and how to give the run's.
+    CliRun typed = cli("check --model " + quote(out + "/tee.model.stl") + " --supports " + quote(out + "/tee.supports.stl"));
+    EXPECT_TRUE(contains(typed.out, "judged with preset generic-0.4 (the default preset: give the run's folder")) << typed.out;
+    CliRun j = cli("check --json " + quote(out));
+    auto parsed = nlohmann::json::parse(j.out);
+    EXPECT_EQ(parsed["settings"]["preset"], "prusa-mk4-pla");
+    EXPECT_EQ(parsed["settings"]["critical_angle_deg"], 55);
+    // Not a run.
+    CliRun none = cli("check " + quote(tmp.path));
+    EXPECT_EQ(none.code, kExitUsage) << none.out;
+    EXPECT_TRUE(contains(none.out, "no generated .scad in this folder")) << none.out;
+}
+
+TEST(FirstHour, BlockedRegionsAreLeftOutOnPurpose) {
+    TempDir tmp;
+    std::string out = tmp / "out", block = "2,-5,0,10,5,10";  // under the plate's right half
+    ASSERT_EQ(cli(quote(write_good_mesh(tmp)) + " --orient keep --block " + block + " --out " + quote(out)).code, 0);
+    const std::string meshes = " --model " + quote(out + "/tee.model.stl") + " --supports " + quote(out + "/tee.supports.stl");
+    CliRun run = cli("check " + quote(out));
+    EXPECT_EQ(run.code, 0) << run.out;
+    EXPECT_TRUE(contains(run.out, "left out on purpose")) << run.out;
+    EXPECT_TRUE(contains(run.out, "1 region left out on purpose")) << run.out;
+    CliRun unaware = cli("check" + meshes);
+    EXPECT_EQ(unaware.code, kExitCheckFailed) << unaware.out;
+    EXPECT_TRUE(contains(unaware.out, "FAIL coverage")) << unaware.out;
+    CliRun told = cli("check --block " + block + meshes);
+    EXPECT_EQ(told.code, 0) << told.out;
+    EXPECT_TRUE(contains(told.out, "blocked region: left out on purpose")) << told.out;
+}
+
+TEST(FirstHour, ASlotThePrinterBridgesGetsNoSupport) {
+    TempDir tmp;
+    std::string tunnel = write_tunnel(tmp), out = tmp / "out", old = tmp / "old";
+    CliRun r = cli(quote(tunnel) + " --orient keep --out " + quote(out));
+    ASSERT_EQ(r.code, 0) << r.out;
+    auto report = report_of(out, "tunnel");
+    EXPECT_GT(report["overhangs"]["area_mm2"].get<double>(), 19.0);  // the ceiling, 2 x 10 mm
+    EXPECT_EQ(report["overhangs"]["samples"], 0);
+    EXPECT_EQ(report["supports"]["bodies"], 0);
+    CliRun judged = cli("check " + quote(out));  // check agrees: the walls carry the ceiling
+    EXPECT_EQ(judged.code, 0) << judged.out;
+    // The old behaviour, by the parameter.
+    ASSERT_EQ(cli(quote(tunnel) + " --orient keep --support-bridges true --out " + quote(old)).code, 0);
+    auto supported = report_of(old, "tunnel");
+    EXPECT_GT(supported["overhangs"]["samples"].get<int>(), 0);
+    EXPECT_GT(supported["supports"]["bodies"].get<int>(), 0);
+    EXPECT_EQ(supported["parameters"]["support_bridges"], true);
+    EXPECT_TRUE(contains(read_file(old + "/tunnel.scad"), "support_bridges = true;"));
+}
+
+TEST(FirstHour, PillarsCanBeLeftOutByIndex) {
+    TempDir tmp;
+    std::string out = tmp / "out";
+    ASSERT_EQ(cli(quote(write_tunnel(tmp)) + " --orient keep --support-bridges true --out " + quote(out)).code, 0);
+    auto before = report_of(out, "tunnel");
+    ASSERT_EQ(before["supports"]["struts"], 0);  // a part with pillars only
+    const int pillars = before["supports"]["pillars"];
+    ASSERT_GT(pillars, 0);
+    const std::string scad = out + "/tunnel.scad", text = read_file(scad);
+    EXPECT_TRUE(contains(text, "/* 0 */ [[")) << "pillars are numbered after the (no) struts";
+    std::ofstream(scad) << replaced(text, "omit_struts = [];", "omit_struts = [0];");
+    CliRun r = cli("regrow " + quote(scad));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(report_of(out, "tunnel")["supports"]["pillars"], pillars - 1);
+    std::ofstream(scad) << replaced(text, "omit_struts = [];", "omit_struts = [99];");
+    CliRun bad = cli("regrow " + quote(scad));
+    EXPECT_NE(bad.code, 0) << bad.out;
+    EXPECT_TRUE(contains(bad.out, "strut or pillar")) << bad.out;
+}
+
+TEST(FirstHour, RegrowTakesDefinesAndOut) {
+    TempDir tmp;
+    std::string out = tmp / "out", tryout = tmp / "try";
+    ASSERT_EQ(cli(quote(write_good_mesh(tmp)) + " --orient keep --out " + quote(out)).code, 0);
+    const std::string original = read_file(out + "/tee.scad");
+    CliRun r = cli("regrow " + quote(out + "/tee.scad") + " -D sampling=2 --out " + quote(tryout));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(entries(tryout), six_outputs("tee"));
+    EXPECT_TRUE(contains(read_file(tryout + "/tee.scad"), "\nsampling = 2;")) << "the define took effect";
+    EXPECT_EQ(report_of(tryout, "tee")["parameters"]["sampling_distance_mm"], 2);
+    EXPECT_EQ(read_file(out + "/tee.scad"), original) << "the folder it came from is left alone";
+    CliRun typo = cli("regrow " + quote(out + "/tee.scad") + " -D samplin=2");
+    EXPECT_EQ(typo.code, kExitUsage) << typo.out;
+    EXPECT_TRUE(contains(typo.out, "did you mean `sampling`")) << typo.out;
+}
+
+TEST(FirstHour, SaysWhatWasDropped) {
+    TempDir tmp;
+    // A support point in a slit narrower than a tip: no strut fits under it.
+    std::string out = tmp / "out";
+    CliRun point = cli(quote(write_tunnel(tmp, 0.6)) + " --orient keep --support-point 0,0,4 --out " + quote(out));
+    EXPECT_EQ(point.code, 0) << point.out;
+    EXPECT_TRUE(contains(point.out, "support point [0, 0, 4] (on the model at (0.00, 0.00, 4.00)) got no tip")) << point.out;
+    // A floating shell.
+    CliRun shell = cli(quote(bad_dir() + "/disjoint_shells.stl") + " --orient keep --out " + quote(tmp / "shells"));
+    EXPECT_EQ(shell.code, 0) << shell.out;
+    EXPECT_TRUE(contains(shell.out, "floats")) << shell.out;
+    EXPECT_FALSE(contains(cli(quote(write_good_mesh(tmp)) + " --orient keep --out " + quote(tmp / "t")).out, "floats"));
+    // Lone struts: a 1 mm post 30 mm tall with an arm to each side, one sample under each arm
+    // (at 5 mm sampling), on the bed only: two 28 mm struts, 1 mm wide, that nothing joins.
+    cs::test::CellGrid g({-6, -0.5, 0.5, 6}, {-0.5, 0.5}, {0, 29, 30});
+    g.fill({-0.5, -0.5, 0}, {0.5, 0.5, 30});
+    g.fill({-6, -0.5, 29}, {6, 0.5, 30});
+    std::string post = tmp / "post.stl";
+    write_stl(post, g.mesh());
+    CliRun lone = cli(quote(post) + " --orient keep --buildplate-only --sampling 5 --out " + quote(tmp / "post"));
+    EXPECT_EQ(lone.code, 0) << lone.out;
+    EXPECT_TRUE(contains(lone.out, "a lone strut from")) << lone.out;
+    EXPECT_TRUE(contains(lone.out, "comfortable range")) << lone.out;
+}
+
+TEST(FirstHour, ClearWordsForMistakes) {
+    TempDir tmp;
+    std::string tee = write_good_mesh(tmp);
+    CliRun flag = cli(quote(tee) + " --sampel 2");
+    EXPECT_EQ(flag.code, kExitUsage) << flag.out;
+    EXPECT_TRUE(contains(flag.out, "unknown option --sampel (did you mean `--sampling`?)")) << flag.out;
+    CliRun sub = cli("chek --model " + quote(tee));
+    EXPECT_EQ(sub.code, kExitUsage) << sub.out;
+    EXPECT_TRUE(contains(sub.out, "unknown subcommand 'chek' (did you mean `check`?)")) << sub.out;
+    CliRun preset = cli(quote(tee) + " --preset prusa-mk4-pal");
+    EXPECT_EQ(preset.code, kExitUsage) << preset.out;
+    EXPECT_TRUE(contains(preset.out, "did you mean `prusa-mk4-pla`")) << preset.out;
+    CliRun checkflag = cli("check --blok 0,0,0,1,1,1");
+    EXPECT_TRUE(contains(checkflag.out, "did you mean `--block`")) << checkflag.out;
+    // A -D with no value is named as typed, before OpenSCAD makes up a line number for it.
+    std::string part = tmp / "part.scad";
+    std::ofstream(part) << "hole_d = 3;\ncube(10);\n";
+    CliRun define = cli(quote(part) + " -D hole_d= --out " + quote(tmp / "p"));
+    EXPECT_EQ(define.code, kExitUsage) << define.out;
+    EXPECT_TRUE(contains(define.out, "-D hole_d=: no value after '='")) << define.out;
+    EXPECT_FALSE(contains(define.out, "line")) << define.out;
+    // .scad is an input wherever inputs are listed.
+    EXPECT_TRUE(contains(cli("--help").out, ".scad")) << "--help";
+    std::string odd = tmp / "model.xyz";
+    std::ofstream(odd) << "nothing";
+    EXPECT_TRUE(contains(cli(quote(odd)).out, ".scad"));
+}
+
+TEST(FirstHour, ThePoseInWords) {
+    TempDir tmp;
+    std::string out = tmp / "out";
+    CliRun r = cli(quote(write_good_mesh(tmp)) + " --orient 90,0,30 --show-pose --out " + quote(out));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_TRUE(contains(r.out, "pose        scaled 1, rotated 90.0 deg about X, then 0.0 about Y, then 30.0 about Z, then moved by ("))
+        << r.out;
+    EXPECT_TRUE(contains(r.out, "design -> placed: placed = translate([")) << r.out;
+    EXPECT_TRUE(contains(read_file(out + "/tee.scad"), "// pose: scaled 1, rotated 90.0 deg about X"));
+    // The report's angles and offset map the design onto the placed model.
+    auto pl = report_of(out, "tee")["placement"];
+    EXPECT_TRUE(pl.contains("how_to_map"));
+    double r3[3][3];
+    rotation_from_euler_deg(pl["rotation_deg"][0], pl["rotation_deg"][1], pl["rotation_deg"][2], r3);
+    Mesh design = cs::test::t_shape();
+    const Vec3 t{pl["translation_mm"][0], pl["translation_mm"][1], pl["translation_mm"][2]};
+    for (auto& v : design.vertices)
+        v = Vec3{r3[0][0] * v.x + r3[0][1] * v.y + r3[0][2] * v.z, r3[1][0] * v.x + r3[1][1] * v.y + r3[1][2] * v.z,
+                 r3[2][0] * v.x + r3[2][1] * v.y + r3[2][2] * v.z} + t;
+    Box3 mapped = bounding_box(design), placed = bounding_box(read_mesh(out + "/tee.model.stl"));
+    EXPECT_NEAR(distance(mapped.min, placed.min), 0, 1e-3);
+    EXPECT_NEAR(distance(mapped.max, placed.max), 0, 1e-3);
 }

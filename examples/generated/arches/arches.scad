@@ -3,7 +3,10 @@
 // sha256: 3bbb7e131bebb3440a0cc49a79bf36d778545be85b70f672e9ceb1f5655fe307
 // preset generic-0.4: critical angle 50 deg, layer 0.2 mm, sampling 2.5 mm, gap 0.2 mm, clearance 0.3 mm, strategy tree, supports on model allowed
 // 297 nodes, 289 struts, 149 tips, 0 model contacts, 8 bed contacts, 0 pillars
+// pose: scaled 1, rotated 0.0 deg about X, then 0.0 about Y, then 0.0 about Z, then moved by (-37.25, -5.00, 0.00) mm
+//   (cs_pose below; edits are in these placed coordinates, those of arches.model.stl)
 // Render: openscad -o out.stl --export-format binstl THIS.scad  (or: clever-support render THIS.scad)
+// After a Customizer tweak: clever-support apply THIS.scad rewrites the supports STLs and 3MFs from it.
 // Tweak: open in OpenSCAD's Customizer, or pass -D name=value on the command line.
 // Edit by hand: [Manual edits] and [Regrow] below take effect with `clever-support regrow THIS.scad`,
 // which grows the tree again and rewrites every output in this folder.
@@ -42,7 +45,8 @@ show_supports = true;
 support_blockers = [];
 // Extra points to support, [x, y, z] on the model's underside (snapped to it within 2 mm)
 support_points = [];
-// Struts to leave out (indices in cs_struts below), with everything that hangs from them
+// Struts to leave out (indices in cs_struts below), with everything that hangs from them, and
+// pillars (their numbers in cs_pillars)
 omit_struts = [];
 // A strut to show in red (index in cs_struts; -1: none)
 highlight_strut = -1;
@@ -59,6 +63,8 @@ tip_length = 1; // [0.2:0.1:5]
 gap = 0.2; // [0:0.05:1]
 // Air kept between struts and the model (mm)
 clearance = 0.3; // [0:0.05:2]
+// Support holes and slots the print bridges too (the printer bridges them)
+support_bridges = false;
 // Supports stand on the bed only, routed around the model
 buildplate_only = false;
 
@@ -66,12 +72,13 @@ buildplate_only = false;
 // How this file was made: `clever-support regrow` reads these.
 cs_version = "0.1.0";
 cs_input = "examples/models/arches.stl";
-cs_input_path = "/work/main/examples/models/arches.stl";
+cs_input_path = "/work/wt-firsthour/examples/models/arches.stl";
 cs_input_sha256 = "3bbb7e131bebb3440a0cc49a79bf36d778545be85b70f672e9ceb1f5655fe307";
 cs_defines = [];
 cs_preset = "generic-0.4";
 cs_layer_height = 0.2;
 cs_line_width = 0.4;
+cs_filament_density = 1.24;
 cs_strategy = "tree";
 cs_orient = "keep";
 cs_scale = 1;
@@ -840,7 +847,8 @@ cs_beds = [
   /* 295 */ [295, 3.6036],
   /* 296 */ [296, 5.2111]
 ];
-// [[x, y, z] top, [x, y, z] bottom]: too short for a tree, d_min up to a tip
+// [[x, y, z] top, [x, y, z] bottom]: too short for a tree, d_min up to a tip; numbered after the
+// struts (omit_struts takes these numbers too)
 cs_pillars = [
 ];
 // How far a strut reaches into the joint below it (mm)

@@ -3,7 +3,10 @@
 // sha256: 675ba0dfdd4bddc15ca8a0c273e66f3b30076687e4f097ef4405360d385153cf
 // preset generic-0.4: critical angle 50 deg, layer 0.2 mm, sampling 2.5 mm, gap 0.2 mm, clearance 0.3 mm, strategy tree, supports on model allowed
 // 506 nodes, 502 struts, 265 tips, 2 model contacts, 2 bed contacts, 0 pillars
+// pose: scaled 1, rotated 0.0 deg about X, then 0.0 about Y, then 0.0 about Z, then moved by (0.28, 0.00, 0.00) mm
+//   (cs_pose below; edits are in these placed coordinates, those of bird.model.stl)
 // Render: openscad -o out.stl --export-format binstl THIS.scad  (or: clever-support render THIS.scad)
+// After a Customizer tweak: clever-support apply THIS.scad rewrites the supports STLs and 3MFs from it.
 // Tweak: open in OpenSCAD's Customizer, or pass -D name=value on the command line.
 // Edit by hand: [Manual edits] and [Regrow] below take effect with `clever-support regrow THIS.scad`,
 // which grows the tree again and rewrites every output in this folder.
@@ -42,7 +45,8 @@ show_supports = true;
 support_blockers = [];
 // Extra points to support, [x, y, z] on the model's underside (snapped to it within 2 mm)
 support_points = [];
-// Struts to leave out (indices in cs_struts below), with everything that hangs from them
+// Struts to leave out (indices in cs_struts below), with everything that hangs from them, and
+// pillars (their numbers in cs_pillars)
 omit_struts = [];
 // A strut to show in red (index in cs_struts; -1: none)
 highlight_strut = -1;
@@ -59,6 +63,8 @@ tip_length = 1; // [0.2:0.1:5]
 gap = 0.2; // [0:0.05:1]
 // Air kept between struts and the model (mm)
 clearance = 0.3; // [0:0.05:2]
+// Support holes and slots the print bridges too (the printer bridges them)
+support_bridges = false;
 // Supports stand on the bed only, routed around the model
 buildplate_only = false;
 
@@ -66,12 +72,13 @@ buildplate_only = false;
 // How this file was made: `clever-support regrow` reads these.
 cs_version = "0.1.0";
 cs_input = "examples/models/bird.stl";
-cs_input_path = "/work/main/examples/models/bird.stl";
+cs_input_path = "/work/wt-firsthour/examples/models/bird.stl";
 cs_input_sha256 = "675ba0dfdd4bddc15ca8a0c273e66f3b30076687e4f097ef4405360d385153cf";
 cs_defines = [];
 cs_preset = "generic-0.4";
 cs_layer_height = 0.2;
 cs_line_width = 0.4;
+cs_filament_density = 1.24;
 cs_strategy = "tree";
 cs_orient = "keep";
 cs_scale = 1;
@@ -1374,7 +1381,8 @@ cs_beds = [
   /* 504 */ [504, 5.251],
   /* 505 */ [505, 6.6774]
 ];
-// [[x, y, z] top, [x, y, z] bottom]: too short for a tree, d_min up to a tip
+// [[x, y, z] top, [x, y, z] bottom]: too short for a tree, d_min up to a tip; numbered after the
+// struts (omit_struts takes these numbers too)
 cs_pillars = [
 ];
 // How far a strut reaches into the joint below it (mm)

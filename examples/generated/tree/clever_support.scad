@@ -48,7 +48,8 @@
 //         overlap  how far a strut reaches into the solid below it (mm)
 //       tip_length: how long the tips are is fixed by where the tree put its leaves and contact
 //       nodes (a regrow parameter); cs_tree takes it only so files written before still call it.
-//       omit: strut indices left out with every strut above them (their branch); highlight: a
+//       omit: strut indices left out with every strut above them (their branch), and pillars
+//       (pillar i is index len(struts) + i); highlight: a
 //       strut index drawn red (-1: none).
 //   cs_show_edits(blockers, points): see-through boxes and points in the preview (not rendered).
 //   cs_strut_widths(...) returns [[upper, lower], ...] per strut, for inspection with echo().
@@ -244,7 +245,8 @@ module cs_tree(tree, omit, highlight, k, d_min, d_max, strength_length, wall, ti
             cs_tip(nodes[l[0]] - [0, 0, overlap], l[2], w[out[l[0]]][0], tip_diameter, wall);
         for (c = contacts) if (len(node_in[c[0]]) > 0)
             cs_contact_tip(c[1], nodes[c[0]], tip_diameter, w[node_in[c[0]][0]][1], wall);
-        for (p = pillars) cs_prism(p[1], p[0], d_min, tip_diameter, false, wall);
+        for (i = [0 : max(0, len(pillars) - 1)]) if (i < len(pillars) && len(search(len(struts) + i, omit)) == 0)
+            cs_prism(pillars[i][1], pillars[i][0], d_min, tip_diameter, false, wall);
     }
 }
 
