@@ -45,6 +45,7 @@ SLICE_PY = os.path.join(HERE, "slicers", "slice.py")
 sys.path.insert(0, os.path.join(HERE, "slicers"))
 sys.dont_write_bytecode = True
 import gcode_stats  # noqa: E402
+import gcode_time  # noqa: E402
 import printed_bodies  # noqa: E402
 import slice as slice_stl  # noqa: E402
 
@@ -128,6 +129,7 @@ def generate(args, name, path, scale, work, strategy):
     return {"cmd": " ".join(cmd), "dir": out, "cpu_s": cpu, "file_bytes": files,
             "support_volume_mm3": rep["supports"]["support_volume_mm3"],
             "struts": rep["supports"]["struts"], "samples": rep["overhangs"]["samples"],
+            "slicer_estimate": rep["supports"].get("slicer_estimate"),
             "triangles": rep["input"]["triangles"]}
 
 
@@ -179,6 +181,7 @@ def slice_route(args, key, name, tree, columns, work):
     out = {k: res[k] for k in ("grams", "print_time_s", "filament_mm3", "slice_seconds")}
     out["cpu_s"] = cpu
     out["gcode"] = gcode_stats.parse(os.path.join(out_dir, "out.gcode"))
+    out["time"] = gcode_time.split(os.path.join(out_dir, "out.gcode"), res["print_time_s"])
     if args.keep_gcode and os.path.exists(os.path.join(out_dir, "out.gcode")):
         with open(os.path.join(out_dir, "out.gcode"), "rb") as src, gzip.open(os.path.join(out_dir, "out.gcode.gz"),
                                                                             "wb", compresslevel=6) as dst:
@@ -198,8 +201,35 @@ def slice_route(args, key, name, tree, columns, work):
     return out
 
 
+def reparse(work, name, m):
+    """Parses a model's kept G-codes (<work>/<name>/slices/<key>/out.gcode.gz) and its reports again."""
+    for strategy, g in m.get("gen", {}).items():
+        rep = os.path.join(g.get("dir", ""), name + ".report.json")
+        if os.path.exists(rep):
+            g["slicer_estimate"] = json.load(open(rep))["supports"].get("slicer_estimate")
+    for key, r in m.get("slices", {}).items():
+        gz = os.path.join(work, name, "slices", key, "out.gcode.gz")
+        if "error" not in r and os.path.exists(gz):
+            r["gcode"] = gcode_stats.parse(gz)
+            r["time"] = gcode_time.split(gz, r["print_time_s"])
+
+
 def ratio(a, b):
     return a / b if a is not None and b not in (None, 0) else None
+
+
+# Routes the generator's report estimates (supports.slicer_estimate), by the report's name for them.
+ESTIMATED = {"cura_ours_mesh": "cura_support_mesh", "prusa_ours_3mf": "prusa_3mf"}
+
+
+def estimate_seconds(est, key):
+    """The generator's estimate of the seconds the supports add on this route: its per-route estimate,
+    or the one number that reports before 2026-11-26 gave (priced for Cura's support-mesh route)."""
+    if not est:
+        return None
+    if "routes" in est:
+        return est["routes"].get(ESTIMATED[key], {}).get("seconds")
+    return est.get("seconds")
 
 
 def derive(m):
@@ -228,6 +258,20 @@ def derive(m):
                                               else None),
             "support_islands_by_eighth": g["support_islands_by_eighth"] if key in SUPPORT_SECTION_ROUTES else None,
         }
+        if row["support_islands_max_per_layer"] is None and "islands_by_layer" in g and "islands_by_layer" in gn:
+            # our supports printed as model geometry: the most islands a layer has beyond the bare model's
+            row["support_islands_max_per_layer"] = max(
+                (a - b for a, b in zip(g["islands_by_layer"], gn["islands_by_layer"] + [0] * len(g["islands_by_layer"]))),
+                default=0)
+        if "time" in r and "time" in none:
+            split = {k: r["time"][k] - none["time"][k] for k in gcode_time.TERMS + ("accel_s",)}
+            row["time_split_s"] = split
+            row["time_split_residual_s"] = row["support_min"] * 60 - sum(split[k] for k in gcode_time.TERMS)
+            row["starts_stops_per_island_s"] = ratio(split["accel_s"], row["support_islands"])
+        if key in ESTIMATED:
+            est = estimate_seconds(m["gen"]["tree"].get("slicer_estimate"), key)
+            row["estimate_s"] = est
+            row["estimate_over_gcode"] = ratio(est, row["support_min"] * 60)
         if key in OURS:
             mesh = m["gen"][OURS[key]].get("support_volume_mm3")
             row["sliced_over_mesh"] = ratio(row["support_mm3"], mesh)
@@ -262,6 +306,10 @@ def derive(m):
         t["prusa_3mf_filament_vs_snug"] = ratio(d["prusa_ours_3mf"]["support_mm3"], d["prusa_snug"]["support_mm3"])
         t["prusa_3mf_sliced_over_mesh"] = d["prusa_ours_3mf"].get("sliced_over_mesh")
         t["prusa_3mf_dropped_body_layers"] = d["prusa_ours_3mf"].get("dropped_body_layers")
+    for key, field in (("cura_ours_mesh", "cura_mesh_estimate_over_gcode"),
+                       ("prusa_ours_3mf", "prusa_3mf_estimate_over_gcode")):
+        if key in d and d[key].get("estimate_over_gcode") is not None:
+            t[field] = d[key]["estimate_over_gcode"]
     gen_cpu = m["gen"]["tree"].get("cpu_s")
     tree_cpu, none_cpu = s.get("cura_tree", {}).get("cpu_s"), s.get("cura_none", {}).get("cpu_s")
     if gen_cpu and tree_cpu is not None and none_cpu is not None:
@@ -368,10 +416,121 @@ def report_md(data):
                  f"{mb('.prusa.3mf')} | {mb('.3mf')} | {mb('.supported.stl')} |")
     extra = ["cura_mesh_time_vs_ours_as_model", "prusa_3mf_time_vs_ours_as_model", "cura_mesh_filament_vs_columns_mesh",
              "cura_mesh_dropped_body_layers", "prusa_3mf_dropped_body_layers"]
+    L += routes_md(data)
+    L += split_md(data)
     s = data["summary"]
     L.append("\nOther ratios over every model (median, worst): " + "; ".join(
         f"{k} {fmt(s['median'].get(k))}, {fmt(s['worst'].get(k))}" for k in extra) + ".\n")
     return "\n".join(L) + "\n"
+
+
+SPLIT_ROUTES = [("cura_normal", "Cura normal"), ("cura_tree", "Cura tree"), ("cura_ours_mesh", "ours, Cura support mesh"),
+                ("prusa_snug", "Prusa snug"), ("prusa_ours_3mf", "ours, Prusa 3MF")]
+
+
+def models_by_set(data):
+    """[(set title, [(name, model)])] in the order of SETS, sets without models left out."""
+    out = []
+    for group, title in SETS:
+        ms = [(n, m) for n, m in data["models"].items() if m.get("set", "other") == group and m.get("derived")]
+        if ms:
+            out.append((title, ms))
+    return out
+
+
+def routes_md(data):
+    """Issue 32's per-model table: time, filament, island-layers and max islands per layer, ours and the
+    slicers' own, both slicers."""
+    L = ["\n## Per model, both slicers: time, filament, island-layers, max islands per layer\n",
+         "Support-only: route − bare model, same slicer and run. *min*: added minutes; *g*: added filament; "
+         "*isl*: support island-layers; *max*: most islands in one layer (for our Prusa route, where our struts "
+         "print as model geometry: the route's islands − the bare model's, layer by layer). *ratio*: our minutes "
+         "over the better of the slicer's own.\n"]
+    groups = {"cura": (["cura_ours_mesh", "cura_normal", "cura_tree"], ["cura_normal", "cura_tree"]),
+              "prusa": (["prusa_ours_3mf", "prusa_snug"], ["prusa_snug"])}
+    for slicer, (keys, peers) in groups.items():
+        head = " | ".join(f"{dict(SPLIT_ROUTES)[k]}: min | g | isl | max" for k in keys)
+        for title, ms in models_by_set(data):
+            L.append(f"\n### {'CuraEngine 4.13' if slicer == 'cura' else 'PrusaSlicer 2.5'}: {title}\n")
+            L.append(f"| model | {head} | ratio |")
+            L.append("|---|" + "---:|" * (4 * len(keys) + 1))
+            for name, m in ms:
+                d = m["derived"]
+                cells = []
+                for k in keys:
+                    r = d.get(k)
+                    cells += ([fmt(r["support_min"], "{:.1f}"), fmt(r["support_g"]), fmt(r["support_islands"], "{}"),
+                               fmt(r["support_islands_max_per_layer"], "{}")] if r else ["–"] * 4)
+                better = min((d[k]["support_min"] for k in peers if k in d), default=None)
+                ours = d.get(keys[0], {}).get("support_min")
+                L.append(f"| {name} | " + " | ".join(cells) + f" | {fmt(ratio(ours, better))} |")
+    return L
+
+
+def split_md(data):
+    """Where the added minutes go, per route (gcode_time.py), and the generator's estimate against them."""
+    L = ["\n## Where the added minutes go (slicers/gcode_time.py)\n",
+         "Each G-code is replayed with the profile's machine (1500 mm/s², jerk 10) the way both slicers' "
+         "estimators do, and its time split into *extrusion* and *travel* at their feedrates, *retractions* "
+         "(filament-only moves), *starts/stops* (what acceleration and corners add to extrusion and travel: "
+         "it grows with islands and corners, not with length) and *other* (Z-only moves, dwells). Every column "
+         "is the route minus the bare model, in seconds; *residual* = the slicer's own added seconds − the sum "
+         "of the five. *per island*: starts/stops over the support island-layers.\n"]
+    terms = [("extrusion_s", "extrusion"), ("travel_s", "travel"), ("retraction_s", "retractions"),
+             ("accel_s", "starts/stops"), ("other_s", "other")]
+    L.append("| set | model | route | added s | " + " | ".join(t for _, t in terms) + " | residual | per island s |")
+    L.append("|---|---|---|---:|" + "---:|" * (len(terms) + 2))
+    totals = {}
+    for title, ms in models_by_set(data):
+        for name, m in ms:
+            for key, label in SPLIT_ROUTES:
+                r = m["derived"].get(key)
+                if not r or "time_split_s" not in r:
+                    continue
+                sp = r["time_split_s"]
+                tot = totals.setdefault(key, {k: 0.0 for k, _ in terms + [("added", ""), ("residual", "")]})
+                for k, _ in terms:
+                    tot[k] += sp[k]
+                tot["added"] += r["support_min"] * 60
+                tot["residual"] += r["time_split_residual_s"]
+                L.append(f"| {title.split(' ')[0]} | {name} | {label} | {r['support_min'] * 60:.0f} | " +
+                         " | ".join(f"{sp[k]:.0f}" for k, _ in terms) +
+                         f" | {r['time_split_residual_s']:.0f} | {fmt(r.get('starts_stops_per_island_s'), '{:.3f}')} |")
+    L.append("\nSummed over every model above (share of the added seconds):\n")
+    L.append("| route | added s | " + " | ".join(t for _, t in terms) + " | residual |")
+    L.append("|---|---:|" + "---:|" * (len(terms) + 1))
+    for key, label in SPLIT_ROUTES:
+        if key not in totals:
+            continue
+        tot = totals[key]
+        share = lambda v: f"{v:.0f} ({v / tot['added']:.0%})" if tot["added"] else f"{v:.0f}"  # noqa: E731
+        L.append(f"| {label} | {tot['added']:.0f} | " + " | ".join(share(tot[k]) for k, _ in terms) +
+                 f" | {share(tot['residual'])} |")
+    L.append("\n## The generator's estimate against the G-code\n")
+    L.append("`supports.slicer_estimate` of the report (seconds the supports add, per route) over the seconds "
+             "the slicer's own estimate adds for that route. Worst = furthest from 1.\n")
+    L.append("| set | model | Cura mesh: estimate s | G-code s | ratio | Prusa 3MF: estimate s | G-code s | ratio |")
+    L.append("|---|---|---:|---:|---:|---:|---:|---:|")
+    for title, ms in models_by_set(data):
+        for name, m in ms:
+            cells = []
+            for key in ("cura_ours_mesh", "prusa_ours_3mf"):
+                r = m["derived"].get(key, {})
+                cells += [fmt(r.get("estimate_s"), "{:.0f}"),
+                          fmt(r["support_min"] * 60 if "support_min" in r else None, "{:.0f}"),
+                          fmt(r.get("estimate_over_gcode"))]
+            L.append(f"| {title.split(' ')[0]} | {name} | " + " | ".join(cells) + " |")
+    L.append("")
+    L.append("| set | Cura mesh: median ratio | worst | Prusa 3MF: median ratio | worst |")
+    L.append("|---|---:|---:|---:|---:|")
+    for group, title in SETS:
+        sm = data.get("summary_by_set", {}).get(group)
+        if not sm:
+            continue
+        L.append(f"| {title.split(' (')[0]} | " + " | ".join(
+            fmt(sm[w].get(k)) for k in ("cura_mesh_estimate_over_gcode", "prusa_3mf_estimate_over_gcode")
+            for w in ("median", "worst")) + " |")
+    return L
 
 
 CHART_ROUTES = [  # (route, label, colour); ours hatched
@@ -455,14 +614,17 @@ def summary_of(models):
                                                ("prusa_3mf_time_vs_ours_as_model", "max"),
                                                ("cura_mesh_filament_vs_columns_mesh", "max"),
                                                ("cura_mesh_dropped_body_layers", "max"),
-                                               ("prusa_3mf_dropped_body_layers", "max")]
+                                               ("prusa_3mf_dropped_body_layers", "max"),
+                                               ("cura_mesh_estimate_over_gcode", "far"),
+                                               ("prusa_3mf_estimate_over_gcode", "far")]
     limits = {k: v for k, v, _ in TARGETS}
     for k, d in keys:
         vals = [m["targets"][k] for m in models if m.get("targets", {}).get(k) is not None]
         if not vals:
             continue
         med[k] = statistics.median(vals)
-        worst[k] = max(vals) if d == "max" else min(vals)
+        worst[k] = (max(vals) if d == "max" else min(vals) if d == "min"
+                    else max(vals, key=lambda v: abs(math.log(v)) if v > 0 else math.inf))  # "far": furthest from 1
         if k in limits:
             n[k] = len(vals)
             met[k] = sum((v <= limits[k]) if d == "max" else (v >= limits[k]) for v in vals)
@@ -519,6 +681,9 @@ def main():
     ap.add_argument("--tuning", action="store_true",
                     help="the shared benchmark models but " + ", ".join(sorted(TUNING_SKIP)) + "; stem tuning")
     ap.add_argument("--routes", help="only these slice keys (comma-separated; the *_none ones are always sliced)")
+    ap.add_argument("--reparse", action="store_true",
+                    help="with --report-only: parse the G-codes kept by --keep-gcode in --work again (gcode_stats, "
+                         "gcode_time) and re-read the generator's reports, then redo the tables")
     ap.add_argument("--keep-gcode", action="store_true",
                     help="keep each G-code gzipped beside its slice (<work>/<model>/slices/<key>/out.gcode.gz)")
     args = ap.parse_args()
@@ -536,10 +701,14 @@ def main():
         routes = [k for k in ROUTES if k in want or k.endswith("_none")]
     if args.report_only:
         data = json.load(open(jpath))
-        for m in data["models"].values():
+        for name, m in data["models"].items():
+            if args.reparse:
+                reparse(args.work, name, m)
             if "slices" in m:
                 m["derived"], m["targets"] = derive(m)
         summarize(data)
+        if args.reparse:  # the G-codes' new numbers are kept, for a later --report-only
+            json.dump(data, open(jpath, "w"), indent=1)
         open(mpath, "w").write(report_md(data))
         write_chart_svg(data, svg)
         return 0

@@ -12,13 +12,14 @@ Reads the G-code of CuraEngine 4.13 (";LAYER:n", ";TYPE:SUPPORT") or PrusaSlicer
   through air (it went around the model), so they say how often islands on opposite sides of a
   model part follow each other in the slicer's order.
 * travel_mm: XY length of moves that do not extrude.
-* islands: per layer, the separate pieces the nozzle prints. A new island starts at the first
+* islands: per layer, the separate pieces the nozzle prints (summed; islands_by_layer: per layer). A new island starts at the first
   extrusion of a layer, and at every extrusion reached after more than ISLAND_TRAVEL_MM of travel
   since the previous extrusion (shared notes, slicer-handoff.md). Counted for every extrusion
   (`islands`) and for extrusions inside support sections only (`support_islands`; a support
   extrusion right after a non-support one also starts an island).
 * extruded_mm3 by section type: filament length times the filament's cross-section.
 """
+import gzip
 import json
 import math
 import re
@@ -31,6 +32,35 @@ SUPPORT_TYPES = ("SUPPORT", "SUPPORT-INTERFACE", "Support material", "Support ma
 _WORD = re.compile(r"([GXYZEF])(-?[0-9.]+)")
 
 
+class Extruder:
+    """How E counts in a G-code (M82 absolute, M83 relative, G92 E resets it), shared by gcode_time.py."""
+
+    def __init__(self):
+        self.e = 0.0
+        self.relative = False
+
+    def sets_mode(self, code):
+        """Takes M82, M83 and G92 E; True if `code` was one of them (nothing else to do with it)."""
+        if code.startswith("M82") or code.startswith("M83"):
+            self.relative = code.startswith("M83")
+            return True
+        if code.startswith("G92"):
+            m = re.search(r"E(-?[0-9.]+)", code)
+            if m:
+                self.e = float(m.group(1))
+            return True
+        return False
+
+    def delta(self, words):
+        """The filament a move's words push (negative: retracted)."""
+        if "E" not in words:
+            return 0.0
+        ne = float(words["E"])
+        de = ne if self.relative else ne - self.e
+        self.e = self.e + ne if self.relative else ne
+        return de
+
+
 def is_support(section):
     return section in SUPPORT_TYPES
 
@@ -38,8 +68,7 @@ def is_support(section):
 def parse(path):
     area = math.pi * FILAMENT_DIAMETER_MM ** 2 / 4
     x = y = 0.0
-    e = 0.0
-    relative_e = False
+    ext = Extruder()
     section = None
     layers = []          # per layer: [islands, support_islands]
     travel_since = math.inf   # XY travel since the last extrusion (inf: none yet on this layer)
@@ -49,7 +78,9 @@ def parse(path):
     retracted_since_support = False   # a retraction since the last extrusion, which was support
     travel = 0.0
     by_type = {}
-    with open(path, errors="replace") as f:
+    opener = (lambda p: gzip.open(p, "rt", errors="replace")) if path.endswith(".gz") else (
+        lambda p: open(p, errors="replace"))
+    with opener(path) as f:
         for raw in f:
             line = raw.strip()
             if line.startswith(";"):
@@ -60,33 +91,18 @@ def parse(path):
                     section = line[6:]
                 continue
             code = line.split(";", 1)[0]
-            if not code:
-                continue
-            if code.startswith("M82"):
-                relative_e = False
-                continue
-            if code.startswith("M83"):
-                relative_e = True
+            if not code or ext.sets_mode(code):
                 continue
             if code.startswith("G10") and not code.startswith("G10 "):
                 retractions += 1
                 retracted_since_support = last_was_support
-                continue
-            if code.startswith("G92"):
-                m = re.search(r"E(-?[0-9.]+)", code)
-                if m:
-                    e = float(m.group(1))
                 continue
             if not (code.startswith("G0") or code.startswith("G1")) or code.startswith("G10"):
                 continue
             words = dict(_WORD.findall(code))
             nx = float(words["X"]) if "X" in words else x
             ny = float(words["Y"]) if "Y" in words else y
-            de = 0.0
-            if "E" in words:
-                ne = float(words["E"])
-                de = ne if relative_e else ne - e
-                e = e + ne if relative_e else ne
+            de = ext.delta(words)
             dist = math.hypot(nx - x, ny - y)
             x, y = nx, ny
             if de > 0 and dist > 0:
@@ -116,6 +132,7 @@ def parse(path):
         "travel_mm": travel,
         "islands": sum(islands),
         "islands_max_per_layer": max(islands, default=0),
+        "islands_by_layer": islands,
         "support_islands": sum(support),
         "support_islands_max_per_layer": max(support, default=0),
         "support_islands_by_eighth": by_eighth(support),

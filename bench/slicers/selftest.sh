@@ -9,7 +9,9 @@
 #     Cura none/normal/tree and PrusaSlicer none/grid: grams > 0, time > 0, and with support
 #     >= without (grams and time);
 #   * bridge.stl + a filler block (the space under the deck) given as TWO STLs: they are merged
-#     into one mesh and must slice like a solid 50x10x8 box (pitfall 5), in both slicers.
+#     into one mesh and must slice like a solid 50x10x8 box (pitfall 5), in both slicers;
+#   * gcode_time.py: its replay of every G-code above within 3 % of the slicer's own estimate, and
+#     its terms on a hand-made G-code.
 # Prints the numbers, then "N passed, N failed"; exits 1 if any check failed.
 set -uo pipefail
 
@@ -138,6 +140,26 @@ st = gcode_stats.parse(synthetic)
 check(st["retractions"] == 3 and st["support_to_support_retractions"] == 1,
       "gcode_stats: 1 of 3 retractions is support -> support (%s of %s)"
       % (st["support_to_support_retractions"], st["retractions"]))
+# gcode_time: the replay of the moves gives each slicer's own estimate back (within 3 %), and a hand-made
+# G-code's terms match the trapezoid worked out by hand.
+import gcode_time
+for n in R:
+    if R[n]:
+        t = gcode_time.split(os.path.join(work, n, "out.gcode"), R[n]["print_time_s"])
+        check(abs(t["residual_s"]) <= 0.03 * t["slicer_s"],
+              "gcode_time %s: replay %.0f s against the slicer's %.0f s" % (n, t["sim_s"], t["slicer_s"]))
+hand = os.path.join(work, "time.gcode")
+with open(hand, "w") as f:  # 100 mm of extrusion at 60 mm/s from rest, a 2 mm retraction at 25 mm/s, a 10 mm travel
+    f.write(";FLAVOR:Marlin\nM82\n;LAYER:0\nG0 X0 Y0\nG1 F3600 X100 Y0 E5\nG1 F1500 E3\nG0 F7200 X100 Y10\n")
+t = gcode_time.split(hand)
+a, v0, vmin = 1500.0, 5.0, gcode_time.MIN_PLANNER_SPEED  # from rest: half the 10 mm/s jerk
+up, down = (60 ** 2 - v0 ** 2) / (2 * a), (60 ** 2 - v0 ** 2) / (2 * a)  # a corner into a retraction: jerk again
+expect = (60 - v0) / a + (100 - up - down) / 60 + (60 - v0) / a
+check(abs(t["extrusion_s"] - 100 / 60) < 1e-9 and abs(t["extrusion_s"] + t["accel_extrusion_s"] - expect) < 0.01,
+      "gcode_time: 100 mm at 60 mm/s = %.3f s at feedrate + %.3f s of starting and stopping (by hand %.3f s)"
+      % (t["extrusion_s"], t["accel_extrusion_s"], expect - 100 / 60))
+check(t["retraction_s"] > 2 / 25 and abs(t["travel_s"] - 10 / 120) < 1e-9,
+      "gcode_time: retraction %.3f s (> 2 mm / 25 mm/s), travel %.3f s at feedrate" % (t["retraction_s"], t["travel_s"]))
 print("selftest: %d passed, %d failed" % (passed, failed))
 sys.exit(1 if failed else 0)
 EOF

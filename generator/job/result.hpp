@@ -24,6 +24,7 @@ struct Supports {
     double volume = 0;         // of the support solid, overlaps at joints counted once (solid_volume), mm^3
     double bodies_volume = 0;  // the bodies' volumes added up, overlaps counted twice, mm^3
     double length = 0;  // total strut length (mm)
+    SlicerCost slicer_cost;  // estimate_slicer_cost of the sized tree, computed once per tree
 };
 
 struct Stage {

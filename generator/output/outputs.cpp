@@ -15,6 +15,7 @@
 #include "mesh/mesh_io.hpp"
 #include "output/scad.hpp"
 #include "output/threemf.hpp"
+#include "tree/slicer_cost.hpp"
 
 namespace cs {
 namespace {
@@ -36,7 +37,7 @@ json supports_json(const Supports& s, const Params& p) {
     const auto& st = s.sized.tree.stats;
     size_t tips = 0;
     for (const auto& b : s.bodies) tips += b.kind == BodyKind::Tip;
-    const auto cost = estimate_slicer_cost(s.sized.tree, mean_strut_widths(s.sized), p);
+    const SlicerCost& cost = s.slicer_cost;
     return {{"struts", s.sized.tree.struts.size()},
             {"nodes", s.sized.tree.nodes.size()},
             {"tips", tips},

@@ -20,6 +20,7 @@
 #include "render/render.hpp"
 #include "query/model_query.hpp"
 #include "struts/solid_volume.hpp"
+#include "tree/slicer_cost.hpp"
 #include "tree/tree.hpp"
 
 namespace cs {
@@ -119,17 +120,18 @@ SupportTree grow_cheaper_tree(const ModelQuery& q, const SupportTree& hung, cons
                               const std::vector<Box3>& support_blockers) {
     SupportTree best = grow_tree(q, hung, p, {}, support_blockers);  // the leaves are the same for every way of growing
     if (p.strategy != Strategy::tree) return best;
-    auto seconds = [&](const SupportTree& t) {
+    auto price = [&](SupportTree& t) {
         const SizedTree sized = size_struts(t, p);
-        return estimate_slicer_cost(sized.tree, mean_strut_widths(sized), p).seconds;
+        t.slicer_cost = estimate_slicer_cost(sized.tree, mean_strut_widths(sized), p);
+        return t.slicer_cost->seconds;
     };
     const TreeStats plain = best.stats;
-    double best_seconds = seconds(best);
+    double best_seconds = price(best);
     for (const GrowOptions& way : {GrowOptions{.lean_merging_leaves = true}, GrowOptions{.pair_leaves_first = true}}) {
         SupportTree t = grow_tree(q, hung, p, way, support_blockers);
         // A tree that gives up more samples is cheaper to print for that alone: never a saving.
         if (t.stats.dropped > plain.dropped || t.stats.dropped_branches > plain.dropped_branches) continue;
-        if (const double s = seconds(t); s < best_seconds) best = std::move(t), best_seconds = s;
+        if (const double s = price(t); s < best_seconds) best = std::move(t), best_seconds = s;
     }
     return best;
 }
@@ -138,7 +140,9 @@ Supports finish_supports(SupportTree grown, const Params& p, const std::vector<i
     Supports s;
     s.grown_struts = grown.struts;
     s.grown_pillars = grown.pillars;
+    const std::optional<SlicerCost> priced = omit.empty() ? grown.slicer_cost : std::nullopt;
     s.sized = size_struts(prune_struts(std::move(grown), omit), p);
+    s.slicer_cost = priced ? *priced : estimate_slicer_cost(s.sized.tree, mean_strut_widths(s.sized), p);
     s.bodies = build_bodies(s.sized, p);
     s.mesh = bodies_mesh(s.bodies, p.wall_thickness);
     s.bodies_volume = signed_volume(s.mesh);  // separate closed shells: their volumes add
@@ -149,6 +153,7 @@ Supports finish_supports(SupportTree grown, const Params& p, const std::vector<i
 
 SupportTree prune_struts(SupportTree t, const std::vector<int>& omit) {
     if (omit.empty()) return t;
+    t.slicer_cost.reset();  // priced with the struts now pruned
     const int count = static_cast<int>(t.struts.size()), pillars = static_cast<int>(t.pillars.size());
     std::vector<std::vector<int>> in(t.nodes.size());
     for (int e = 0; e < count; ++e) in[t.struts[e].bottom].push_back(e);

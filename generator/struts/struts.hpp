@@ -52,7 +52,7 @@ struct SizedTree {
 SizedTree size_struts(SupportTree tree, const Params& p);
 
 // Each strut's mean width (the average of its end widths), parallel to sized.tree.struts: what
-// estimate_slicer_cost (tree.hpp) takes.
+// estimate_slicer_cost (tree/slicer_cost.hpp) takes.
 std::vector<double> mean_strut_widths(const SizedTree& sized);
 
 enum class BodyKind { Strut, Tip, ContactTip, Foot, Pillar };

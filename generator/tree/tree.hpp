@@ -66,7 +66,8 @@ struct TreeStats {
 };
 
 // Ways to grow the same tree. Each is a greedy choice that helps some models and costs others;
-// the pipeline grows the tree each way and keeps the one estimate_slicer_cost finds cheaper.
+// the pipeline grows the tree each way and keeps the one estimate_slicer_cost (tree/slicer_cost.hpp)
+// finds cheaper.
 struct GrowOptions {
     // Two leaves about to merge lean their tips towards each other first (as far as a tip may
     // slant), so they meet a layer or two below the tips. Locally always fewer islands; but the
@@ -79,23 +80,8 @@ struct GrowOptions {
     bool pair_leaves_first = false;
 };
 
-struct SupportTree {
-    std::vector<Node> nodes;
-    std::vector<Strut> struts;
-    std::vector<Pillar> pillars;
-    TreeStats stats;
-    GrowOptions grown_with;  // how the sweep grew it
-
-    double total_length() const;
-};
-
-// touching_space and contact_tolerance: core/rules.hpp. merge_point and collect_contacts:
-// tree/candidates.hpp. strut_is_clear: tree/clearance.hpp.
-
-// What a slicer spends printing a tree as a support mesh (CuraEngine with one support wall and no
-// infill, the route of shared/notes/slicer-handoff.md). On every layer each strut, tip and pillar
-// crossing it is an island: the nozzle travels to it and draws its outline once. The tree's sweep
-// ranks its candidates by the first term (the layers a node stays an island of its own).
+// What a slicer spends printing a tree as a support mesh (estimate_slicer_cost,
+// tree/slicer_cost.hpp).
 struct SlicerCost {
     double island_layers = 0;  // islands, summed over the layers
     double outline_mm = 0;     // outline drawn, summed over the layers
@@ -104,8 +90,21 @@ struct SlicerCost {
     std::size_t most_islands = 0;  // islands in the busiest layer
 };
 
-// `strut_width`: the mean width of each strut of `t` (parallel to t.struts).
-SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>& strut_width, const Params& p);
+struct SupportTree {
+    std::vector<Node> nodes;
+    std::vector<Strut> struts;
+    std::vector<Pillar> pillars;
+    TreeStats stats;
+    GrowOptions grown_with;  // how the sweep grew it
+    // The estimate of the tree as size_struts sizes it, where the one who chose the tree computed it
+    // (grow_cheaper_tree): finish_supports takes it instead of computing it again.
+    std::optional<SlicerCost> slicer_cost;
+
+    double total_length() const;
+};
+
+// touching_space and contact_tolerance: core/rules.hpp. merge_point and collect_contacts:
+// tree/candidates.hpp. strut_is_clear: tree/clearance.hpp.
 
 // Grows the support tree (or the columns baseline, by p.strategy) for the given samples. No tip,
 // strut, foot or pillar enters one of the user's `support_blockers` (placed-model coordinates).

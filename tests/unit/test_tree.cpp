@@ -1,10 +1,11 @@
 // tree/: cone merging (algorithm.md section 3) and the grown support tree's invariants.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
-
 #include <cmath>
 #include <map>
+#include <random>
 #include <set>
 
 #include "overhang/overhang.hpp"
@@ -13,6 +14,7 @@
 #include "query/model_query.hpp"
 #include "shapes.hpp"
 #include "support.hpp"
+#include "tree/slicer_cost.hpp"
 #include "tree/tree.hpp"
 
 using namespace cs;
@@ -617,6 +619,42 @@ TEST(GrowTree, TreeCostsTheSlicerLessThanColumns) {
         EXPECT_LT(ct.island_layers, cc.island_layers);
         EXPECT_LE(ct.most_islands, cc.most_islands);  // at the top every leaf is an island in both
         EXPECT_LT(ct.seconds, cc.seconds);
+    }
+}
+
+// The plain O(n^2) nearest-next walk the grid walk must match, tie for tie.
+double plain_nearest_next_path(std::vector<Vec3> pts) {
+    double len = 0;
+    auto d2 = [](const Vec3& a, const Vec3& b) { return (a.x - b.x) * (a.x - b.x) + (a.y - b.y) * (a.y - b.y); };
+    for (size_t i = 0; i + 1 < pts.size(); ++i) {
+        size_t best = i + 1;
+        for (size_t j = i + 2; j < pts.size(); ++j)
+            if (d2(pts[i], pts[j]) < d2(pts[i], pts[best])) best = j;
+        std::swap(pts[i + 1], pts[best]);
+        len += horizontal_distance(pts[i], pts[i + 1]);
+    }
+    return len;
+}
+
+TEST(SlicerCost, NearestNextPathIsThePlainWalksTieForTie) {
+    EXPECT_EQ(nearest_next_path({}), 0);
+    EXPECT_EQ(nearest_next_path({{1, 2, 3}}), 0);
+    EXPECT_DOUBLE_EQ(nearest_next_path({{0, 0, 0}, {3, 0, 0}, {1, 0, 0}}), 3);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-40, 40);
+    for (int n : {2, 5, 17, 60, 300, 1500}) {
+        std::vector<Vec3> scattered, lattice, clusters;
+        for (int i = 0; i < n; ++i) {
+            scattered.push_back({u(rng), u(rng), 1});
+            // tips on a 2.5 mm lattice, in shuffled order: equal distances everywhere
+            lattice.push_back({2.5 * (i % 23), 2.5 * (i / 23), 1});
+            // two far clusters and a few strays: the walk jumps, the grid refiles
+            const double off = i % 2 ? 500 : 0;
+            clusters.push_back({off + u(rng) / 8, u(rng) / 8 + (i % 97 == 0 ? 300 : 0), 1});
+        }
+        std::shuffle(lattice.begin(), lattice.end(), rng);
+        for (const auto* pts : {&scattered, &lattice, &clusters})
+            EXPECT_EQ(nearest_next_path(*pts), plain_nearest_next_path(*pts)) << n << " points";
     }
 }
 
