@@ -103,7 +103,7 @@ TEST(ViewEdit, AFailingEditGivesRegrowsMessageWithItsLineAndChangesNothing) {
     Arches a;
     std::string e = error_of(a, {{"op", "toggle_strut"}, {"strut", 99999}});
     EXPECT_NE(e.find(a.scad + ":"), std::string::npos) << e;
-    EXPECT_NE(e.find("omit_struts: strut 99999 is out of range"), std::string::npos) << e;
+    EXPECT_NE(e.find("omit_struts: strut or pillar 99999 is out of range"), std::string::npos) << e;
     e = error_of(a, {{"op", "set"}, {"name", "d_min"}, {"value", 50}});
     EXPECT_NE(e.find(a.scad), std::string::npos) << e;
     EXPECT_NE(error_of(a, {{"op", "set"}, {"name", "../../etc/x"}, {"value", 1}}).find("not a Customizer value"), std::string::npos);
