@@ -78,7 +78,7 @@ KnownShortfall known_shortfall(const std::string& file, bool buildplate_only) {
         {"spot.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
         {"fandisk.stl", {{0, 0, 1, 0, 0}, {0, 0, 1, 0, 0}}},
         {"rocker_arm.stl", {{0, 0, 0, 0, 0}, {0, 0, 18, 18, 0}}},
-        {"menger_sponge3.stl", {{0, 0, 0, 0, 0}, {0, 0, 253, 253, 0}}},
+        {"menger_sponge3.stl", {{0, 0, 0, 0, 0}, {0, 0, 246, 246, 0}}},
         {"armadillo.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
         {"beast.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
         {"stanford_bunny.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
