@@ -5,6 +5,7 @@
 #include <CGAL/utility.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -63,11 +64,90 @@ std::vector<std::uint32_t> trace_loop(const PatchEdges& p, std::uint32_t start, 
     }
 }
 
+// Whether two points of the loop (not only neighbours) are closer than a billionth of the loop's
+// extent. CGAL's hole triangulations work in inexact doubles: such a loop (say, vertices a
+// denormal apart, as a corrupt file gives) crashed its constrained Delaunay path and hung its 3D
+// Delaunay path (found by fuzz_ply, fuzz_obj and fuzz_stl). A real hole has no such points, so the
+// loop is left open, as the loops CGAL refuses are.
+bool has_near_duplicates(const std::vector<Vec3>& pts) {
+    Vec3 lo = pts[0], hi = pts[0];
+    for (const Vec3& q : pts) {
+        lo = {std::min(lo.x, q.x), std::min(lo.y, q.y), std::min(lo.z, q.z)};
+        hi = {std::max(hi.x, q.x), std::max(hi.y, q.y), std::max(hi.z, q.z)};
+    }
+    const double tol = 1e-9 * std::max({1.0, hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    std::vector<Vec3> by_x = pts;
+    std::sort(by_x.begin(), by_x.end(), [](const Vec3& a, const Vec3& b) { return a.x < b.x; });
+    for (size_t i = 0; i < by_x.size(); ++i)
+        for (size_t j = i + 1; j < by_x.size() && by_x[j].x - by_x[i].x < tol; ++j)
+            if (std::abs(by_x[j].y - by_x[i].y) < tol && std::abs(by_x[j].z - by_x[i].z) < tol) return true;
+    return false;
+}
+
+// Whether the loop encloses no area seen from any side: its Newell normal (twice the area vector)
+// vanishes next to the square of its extent, as for points along one line. CGAL projects such a
+// loop along that normal for its 2D triangulation, and a zero normal crashed it (fuzz_obj).
+bool encloses_no_area(const std::vector<Vec3>& pts) {
+    Vec3 n{0, 0, 0}, lo = pts[0], hi = pts[0];
+    for (size_t i = 0; i < pts.size(); ++i) {
+        const Vec3 &a = pts[i], &b = pts[(i + 1) % pts.size()];
+        n = {n.x + (a.y - b.y) * (a.z + b.z), n.y + (a.z - b.z) * (a.x + b.x), n.z + (a.x - b.x) * (a.y + b.y)};
+        lo = {std::min(lo.x, a.x), std::min(lo.y, a.y), std::min(lo.z, a.z)};
+        hi = {std::max(hi.x, a.x), std::max(hi.y, a.y), std::max(hi.z, a.z)};
+    }
+    const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+    return std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z) <= 1e-9 * extent * extent;
+}
+
+// Whether the loop, seen along its Newell normal's main axis, crosses or touches itself: then it is
+// no polygon for a 2D triangulation.
+bool crosses_itself(const std::vector<Vec3>& pts) {
+    Vec3 n{0, 0, 0};
+    for (size_t i = 0; i < pts.size(); ++i) {
+        const Vec3 &a = pts[i], &b = pts[(i + 1) % pts.size()];
+        n = {n.x + (a.y - b.y) * (a.z + b.z), n.y + (a.z - b.z) * (a.x + b.x), n.z + (a.x - b.x) * (a.y + b.y)};
+    }
+    const double ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
+    std::vector<std::pair<double, double>> q;  // the loop with its main axis dropped
+    for (const Vec3& a : pts)
+        q.push_back(az >= ax && az >= ay ? std::pair{a.x, a.y} : ay >= ax ? std::pair{a.z, a.x} : std::pair{a.y, a.z});
+    auto orient = [](std::pair<double, double> p, std::pair<double, double> r, std::pair<double, double> t) {
+        const double d = (r.first - p.first) * (t.second - p.second) - (r.second - p.second) * (t.first - p.first);
+        return (d > 0) - (d < 0);
+    };
+    // The textbook test: proper crossings, and an end point lying on the other segment (collinear
+    // pieces of one straight side of a hole meet only where their extents overlap).
+    auto on_segment = [](std::pair<double, double> p, std::pair<double, double> r, std::pair<double, double> t) {
+        return std::min(p.first, r.first) <= t.first && t.first <= std::max(p.first, r.first) &&
+               std::min(p.second, r.second) <= t.second && t.second <= std::max(p.second, r.second);
+    };
+    auto segments_meet = [&](auto a, auto b, auto c, auto d) {
+        const int o1 = orient(a, b, c), o2 = orient(a, b, d), o3 = orient(c, d, a), o4 = orient(c, d, b);
+        if (o1 * o2 < 0 && o3 * o4 < 0) return true;
+        return (o1 == 0 && on_segment(a, b, c)) || (o2 == 0 && on_segment(a, b, d)) || (o3 == 0 && on_segment(c, d, a)) ||
+               (o4 == 0 && on_segment(c, d, b));
+    };
+    const size_t m = q.size();
+    for (size_t i = 0; i < m; ++i)
+        for (size_t j = i + 2; j < m; ++j) {
+            if (i == 0 && j == m - 1) continue;  // neighbours through the loop's end
+            const auto &a = q[i], &b = q[(i + 1) % m], &c = q[j], &d = q[(j + 1) % m];
+            if (segments_meet(a, b, c, d)) return true;
+        }
+    return false;
+}
+
 // CGAL's triangulation of the loop, as mesh faces facing like their neighbours; empty if none was
 // found or if it would reuse an edge the mesh already has (a chord across the hole).
 std::vector<Triangle> patch_for(const Mesh& m, const PatchEdges& p, const std::vector<std::uint32_t>& loop) {
     const int n = static_cast<int>(loop.size());
     if (n < 3) return {};
+    std::vector<Vec3> corners;
+    for (std::uint32_t v : loop) corners.push_back(m.vertices[v]);
+    if (has_near_duplicates(corners) || encloses_no_area(corners)) return {};
+    // CGAL checks this itself before its 2D path, yet crashed on a loop that fails it (fuzz_obj):
+    // such a loop (a hole bent round an edge, say) goes to its 3D path only.
+    const bool flat_path = !crosses_itself(corners);
     std::vector<Point> points, thirds;
     for (std::uint32_t v : loop) {
         const Vec3 &a = m.vertices[v], &c = m.vertices[p.third[v]];
@@ -78,7 +158,7 @@ std::vector<Triangle> patch_for(const Mesh& m, const PatchEdges& p, const std::v
     namespace PMP = CGAL::Polygon_mesh_processing;
     try {
         PMP::triangulate_hole_polyline(points, thirds, std::back_inserter(tris),
-                                       CGAL::parameters::use_2d_constrained_delaunay_triangulation(true)
+                                       CGAL::parameters::use_2d_constrained_delaunay_triangulation(flat_path)
                                            .use_delaunay_triangulation(true)
                                            .do_not_use_cubic_algorithm(true));
     } catch (const std::exception&) {
