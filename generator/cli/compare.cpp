@@ -1,14 +1,12 @@
 #include "cli/compare.hpp"
 
+#include "render/render.hpp"
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-
-#ifndef CS_SOURCE_DIR
-#define CS_SOURCE_DIR "."
-#endif
 
 namespace cs {
 namespace {
@@ -24,10 +22,13 @@ bool on_path(const std::string& command) {
     return std::system(("command -v " + quoted(command) + " >/dev/null 2>&1").c_str()) == 0;
 }
 
-// The harness: $CLEVER_SUPPORT_SLICE_PY, else the source tree's bench/slicers/slice.py.
+// The harness: $CLEVER_SUPPORT_SLICE_PY, else the installed copy of bench/slicers/slice.py
+// (data_dir() + "/slicers", found from the binary's own place like the OpenSCAD runner; in the build
+// tree a configure-time link to bench/slicers). Never a path compiled in: an installed tool must not
+// depend on where it was built.
 std::string slice_py() {
     if (const char* e = std::getenv("CLEVER_SUPPORT_SLICE_PY"); e && *e) return e;
-    return std::string(CS_SOURCE_DIR) + "/bench/slicers/slice.py";
+    return data_dir() + "/slicers/slice.py";
 }
 
 // One slice through slice.py --json; nullopt-like: throws std::runtime_error with its message.

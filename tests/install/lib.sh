@@ -26,9 +26,14 @@ install_moved() {
     prefix=$tmp/elsewhere/clever-support
     # The build tree first: it is often inside the source tree, which is covered next.
     hide_dirs=("$(cd "$build" && pwd -P)" "$(cd "$source" && pwd -P)")
-    # The binary must not carry the source or build path (a compiled-in fallback would).
+    # The binary must not carry the source or build path (a compiled-in fallback would). A short
+    # path can hide from grep in the binary (the compiler may build it from immediates), so the
+    # compile definitions of the generator's targets are checked for it too.
     for d in "${hide_dirs[@]}"; do
         if grep -qaF "$d" "$prefix/bin/clever-support"; then fail "the installed binary contains the path $d"; fi
+        if grep -rhF --include=flags.make "CXX_DEFINES" "$build/generator" 2>/dev/null | grep -qF "$d"; then
+            fail "a generator target is compiled with the path $d in a definition (find it: grep -r CXX_DEFINES $build/generator)"
+        fi
     done
 }
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # cmake --install, moved elsewhere, source and build trees hidden: an OpenSCAD part (.scad input)
 # is rendered by the installed runner, supported, rendered again as a union (--render) and drawn
-# (--preview); the man page and the SCAD template are installed.
+# (--preview); --compare slices with the installed harness; the man page and the SCAD template are
+# installed.
 #   tests/install/test_install.sh BUILD_DIR SOURCE_DIR        (ctest: install.cli)
 source "$(dirname "$0")/lib.sh"
 build=$1 source_dir=$2
@@ -32,7 +33,17 @@ for f in a/arches.union.stl a/arches.3mf a/arches.prusa.3mf a/arches.scad a/clev
 done
 grep -q '"openscad_defines"' a/arches.report.json || fail "the report does not record the -D values"
 
-# 2. The everyday PATH: --render and --preview (the pictures need Debian's openscad and xvfb-run).
+# 2. --compare slices with the harness installed beside the binary (share/clever-support/slicers),
+#    not the source tree's bench/slicers: the source tree is hidden here.
+[ -f "$prefix/share/clever-support/slicers/slice.py" ] || fail "not installed: share/clever-support/slicers/slice.py"
+command -v prusa-slicer >/dev/null || skip "--compare needs prusa-slicer (scripts/install-deps.sh installs it)"
+cp "$source_dir/examples/models/bird.stl" .
+hidden env -u CLEVER_SUPPORT_SLICE_PY PATH=/usr/bin:/bin "$bin" bird.stl --compare prusa --out c \
+    >"$tmp/run-compare.log" 2>&1 || { cat "$tmp/run-compare.log"; fail "--compare prusa failed"; }
+grep -q "compare .*PrusaSlicer.* g, .* min; ours: .* g, .* min" "$tmp/run-compare.log" ||
+    { cat "$tmp/run-compare.log"; fail "--compare printed no comparison (the installed slicing harness was not found?)"; }
+
+# 3. The everyday PATH: --render and --preview (the pictures need Debian's openscad and xvfb-run).
 command -v openscad >/dev/null && command -v xvfb-run >/dev/null ||
     skip "--preview needs openscad and xvfb-run (scripts/install-deps.sh installs them); --render passed"
 hidden env -u CLEVER_SUPPORT_OPENSCAD PATH=/usr/bin:/bin "$bin" arches.scad --render --preview --out b \
@@ -40,4 +51,4 @@ hidden env -u CLEVER_SUPPORT_OPENSCAD PATH=/usr/bin:/bin "$bin" arches.scad --re
 for f in b/arches.union.stl b/arches-front.png b/arches-back.png b/arches-side.png; do
     [ -s "$f" ] || { cat "$tmp/run2.log"; fail "missing output $f"; }
 done
-echo "ok: installed to a temporary prefix, moved, source and build trees hidden; .scad part, --render, --preview"
+echo "ok: installed to a temporary prefix, moved, source and build trees hidden; .scad part, --compare, --render, --preview"
