@@ -15,7 +15,6 @@
 #include "mesh/mesh_io.hpp"
 #include "output/scad.hpp"
 #include "output/threemf.hpp"
-#include "tree/slicer_cost.hpp"
 
 namespace cs {
 namespace {
@@ -283,7 +282,7 @@ std::string human_summary(const Result& r, const Job& job, const std::string& di
     s += fmt::format("  tree        {} struts, {} merges, {} on the bed, {} on the model, {} pillars\n",
                      r.supports.sized.tree.struts.size(), st.merges, st.bed_contacts, st.model_contacts, st.pillars);
     const Params& p = job.params;
-    const double seconds = estimate_slicer_cost(r.supports.sized.tree, mean_strut_widths(r.supports.sized), p).seconds;
+    const double seconds = r.supports.slicer_cost.seconds;  // estimated once, by the pipeline
     s += fmt::format("  support     {:.2f} g of filament ({:.0f} mm^3 at {:g} g/cm^3), about {:.1f} min of printing "
                      "added (estimate)\n",
                      support_grams(r.supports, p), r.supports.volume, p.filament_density, seconds / 60);

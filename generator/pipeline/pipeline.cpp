@@ -95,8 +95,11 @@ Orientation orient_by_support(const Mesh& scaled, const Params& p, const std::st
         Rotation id;
         Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
         auto samples = sample_overhangs(placed, coarse_oo);
-        Supports s = build_supports(placed, samples.samples, coarse);
-        return PoseSupport{s.volume, s.sized.tree.stats.model_contacts, bounding_box(placed).size().z};
+        // What finish_supports computes of the volume, without the mesh a pose is not judged by.
+        const ModelQuery q(placed);
+        const SizedTree sized = grow_cheaper_tree(q, samples.samples, coarse);
+        const double volume = solid_volume(build_bodies(sized, coarse), coarse.wall_thickness);
+        return PoseSupport{volume, sized.tree.stats.model_contacts, bounding_box(placed).size().z};
     });
 }
 
@@ -112,36 +115,44 @@ Supports build_supports(const ModelQuery& q, const std::vector<Sample>& samples,
     return finish_supports(grow_cheaper_tree(q, samples, p), p, omit);
 }
 
-SupportTree grow_cheaper_tree(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p) {
+SizedTree grow_cheaper_tree(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p) {
     return grow_cheaper_tree(q, hang_leaves(q, samples, p), p);
 }
 
-SupportTree grow_cheaper_tree(const ModelQuery& q, const SupportTree& hung, const Params& p,
-                              const std::vector<Box3>& support_blockers) {
-    SupportTree best = grow_tree(q, hung, p, {}, support_blockers);  // the leaves are the same for every way of growing
+SizedTree grow_cheaper_tree(const ModelQuery& q, const SupportTree& hung, const Params& p,
+                            const std::vector<Box3>& support_blockers) {
+    SupportTree plain = grow_tree(q, hung, p, {}, support_blockers);  // the leaves are the same for every way of growing
+    const TreeStats dropped = plain.stats;
+    // Each candidate is sized once, to price it; the chosen one keeps its sizing (size_struts
+    // leaves the tree as it is), so finish_supports need not size it again.
+    SizedTree best = size_struts(std::move(plain), p);
     if (p.strategy != Strategy::tree) return best;
-    auto price = [&](SupportTree& t) {
-        const SizedTree sized = size_struts(t, p);
-        t.slicer_cost = estimate_slicer_cost(sized.tree, mean_strut_widths(sized), p);
-        return t.slicer_cost->seconds;
+    auto price = [&](SizedTree& t) {
+        t.tree.slicer_cost = estimate_slicer_cost(t.tree, mean_strut_widths(t), p);
+        return t.tree.slicer_cost->seconds;
     };
-    const TreeStats plain = best.stats;
     double best_seconds = price(best);
     for (const GrowOptions& way : {GrowOptions{.lean_merging_leaves = true}, GrowOptions{.pair_leaves_first = true}}) {
         SupportTree t = grow_tree(q, hung, p, way, support_blockers);
         // A tree that gives up more samples is cheaper to print for that alone: never a saving.
-        if (t.stats.dropped > plain.dropped || t.stats.dropped_branches > plain.dropped_branches) continue;
-        if (const double s = price(t); s < best_seconds) best = std::move(t), best_seconds = s;
+        if (t.stats.dropped > dropped.dropped || t.stats.dropped_branches > dropped.dropped_branches) continue;
+        SizedTree sized = size_struts(std::move(t), p);
+        if (const double s = price(sized); s < best_seconds) best = std::move(sized), best_seconds = s;
     }
     return best;
 }
 
 Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit) {
+    return finish_supports(size_struts(std::move(grown), p), p, omit);
+}
+
+Supports finish_supports(SizedTree grown, const Params& p, const std::vector<int>& omit) {
     Supports s;
-    s.grown_struts = grown.struts;
-    s.grown_pillars = grown.pillars;
-    const std::optional<SlicerCost> priced = omit.empty() ? grown.slicer_cost : std::nullopt;
-    s.sized = size_struts(prune_struts(std::move(grown), omit), p);
+    s.grown_struts = grown.tree.struts;
+    s.grown_pillars = grown.tree.pillars;
+    if (omit.empty()) s.sized = std::move(grown);  // sized as grown: nothing pruned
+    else s.sized = size_struts(prune_struts(std::move(grown.tree), omit), p);
+    const std::optional<SlicerCost>& priced = s.sized.tree.slicer_cost;  // reset by prune_struts
     s.slicer_cost = priced ? *priced : estimate_slicer_cost(s.sized.tree, mean_strut_widths(s.sized), p);
     s.bodies = build_bodies(s.sized, p);
     s.mesh = bodies_mesh(s.bodies, p.wall_thickness);
@@ -447,7 +458,7 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     }
     // The tree and the columns baseline start from the same leaves (hanging them does not depend
     // on the strategy).
-    SupportTree grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, hung, p, blockers); });
+    SizedTree grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, hung, p, blockers); });
     // The user's omitted struts are numbered in the final tree (the one the .scad shows).
     r.supports = sw.time("struts", progress, [&] { return finish_supports(std::move(grown), p, job.edits.omit_struts); });
     Params columns = p;

@@ -37,14 +37,19 @@ Supports build_supports(const ModelQuery& placed, const std::vector<Sample>& sam
 // that gives up more samples than the plain growth (on a tie, the earlier way). Each way is a
 // greedy choice that helps some models and costs others; the estimate picked PrusaSlicer's faster
 // tree on 9 of 9 models between the first two ways. The columns baseline is grown once (no merges).
-SupportTree grow_cheaper_tree(const ModelQuery& placed, const std::vector<Sample>& samples, const Params& p);
+// Returned sized (size_struts, struts/struts.hpp), as it was sized to be priced: each tree is sized
+// once. Its tree carries the estimate (SupportTree::slicer_cost) for the strategy tree.
+// Example: Supports s = finish_supports(grow_cheaper_tree(q, samples, p), p);
+SizedTree grow_cheaper_tree(const ModelQuery& placed, const std::vector<Sample>& samples, const Params& p);
 // The same from the leaves hang_leaves (tree.hpp) hung for the samples, none entering the user's
 // support blockers (placed-model coordinates).
-SupportTree grow_cheaper_tree(const ModelQuery& placed, const SupportTree& hung, const Params& p,
-                              const std::vector<Box3>& support_blockers = {});
-// Sizes a grown tree into supports: struts in `omit` (indices into `grown`) are pruned with their
-// branches first.
+SizedTree grow_cheaper_tree(const ModelQuery& placed, const SupportTree& hung, const Params& p,
+                            const std::vector<Box3>& support_blockers = {});
+// Supports from a grown tree: struts in `omit` (indices into `grown`) are pruned with their
+// branches first. A tree already sized (grow_cheaper_tree) is sized again only when struts are
+// pruned; its estimate is kept unless struts are pruned.
 Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit = {});
+Supports finish_supports(SizedTree grown, const Params& p, const std::vector<int>& omit = {});
 
 // The tree without the struts in `omit` and everything that hangs from them (the struts above, up
 // to the leaves), and without the pillars in `omit` (pillar i is index struts + i). Nodes keep

@@ -83,9 +83,12 @@ bool ModelQuery::inside(const Vec3& p) const {
     static const K::Vector_3 dirs[3] = {{0.5773, 0.5781, -0.5767}, {-0.7071, 0.0123, -0.7070}, {0.0211, -0.9981, -0.0582}};
     // Winding number along each ray (exits minus entries), not parity: overlapping solids, which
     // slicers unite, count as inside.
+    // Two rays that agree decide the majority: the third is cast only when they differ (a third
+    // of the work on most points; the answer is the same).
     int votes = 0;
     std::vector<Tree::Primitive_id> hits;
-    for (const auto& d : dirs) {
+    for (int r = 0; r < 3; ++r) {
+        const auto& d = dirs[r];
         hits.clear();
         impl_->tree.all_intersected_primitives(K::Ray_3(pt(p), d), std::back_inserter(hits));
         int winding = 0;
@@ -94,6 +97,7 @@ bool ModelQuery::inside(const Vec3& p) const {
             winding += s > 0 ? 1 : (s < 0 ? -1 : 0);
         }
         votes += winding > 0;
+        if (r == 1 && votes != 1) break;
     }
     return votes >= 2;
 }

@@ -127,9 +127,13 @@ Floor floor_under(const ModelQuery& model, const Vec3& c, double w, double gap) 
 // Is every point of the squares in the air, with no wall between it and the centre?
 bool in_open_air(const ModelQuery& model, const Vec3& centre, const std::array<Vec3, 5>& a,
                  const std::array<Vec3, 5>& b) {
+    // The segments first: they are cheap, and one that hits decides without the costlier inside test.
     for (const auto& set : {a, b})
         for (const auto& q : set)
-            if (model.inside(q) || (q != centre && model.segment_hits(centre, q))) return false;
+            if (q != centre && model.segment_hits(centre, q)) return false;
+    for (const auto& set : {a, b})
+        for (const auto& q : set)
+            if (model.inside(q)) return false;
     return true;
 }
 
@@ -183,8 +187,11 @@ std::optional<Vec3> clear_tip_foot(const ModelQuery& model, const Vec3& foot, co
 
 bool square_is_clear(const ModelQuery& model, const Vec3& c, double w) {
     const auto sq = square_points(c, w);
+    // The edges first: they are cheap, and one that hits decides without the costlier inside test.
     for (size_t i = 1; i < sq.size(); ++i)
-        if (model.inside(sq[i]) || model.segment_hits(sq[i], sq[i % 4 + 1])) return false;
+        if (model.segment_hits(sq[i], sq[i % 4 + 1])) return false;
+    for (size_t i = 1; i < sq.size(); ++i)
+        if (model.inside(sq[i])) return false;
     return true;
 }
 

@@ -592,7 +592,7 @@ TEST(GrowCheaperTree, KeepsTheWayTheSlicerEstimatePrefersUnlessItDropsMore) {
                 seconds(t) < seconds(expected))
                 expected = t;
         }
-        const SupportTree kept = grow_cheaper_tree(q, samples, p);
+        const SupportTree kept = grow_cheaper_tree(q, samples, p).tree;
         EXPECT_EQ(kept.grown_with.lean_merging_leaves, expected.grown_with.lean_merging_leaves);
         EXPECT_EQ(kept.grown_with.pair_leaves_first, expected.grown_with.pair_leaves_first);
         EXPECT_LE(kept.stats.dropped, plain.stats.dropped);
@@ -606,7 +606,7 @@ TEST(GrowCheaperTree, KeepsTheWayTheSlicerEstimatePrefersUnlessItDropsMore) {
     const Mesh m = cs::test::table_shape();
     ModelQuery q(m);
     const auto samples = sample_overhangs(m, overhang_options(columns)).samples;
-    EXPECT_FALSE(grow_cheaper_tree(q, samples, columns).grown_with.lean_merging_leaves);
+    EXPECT_FALSE(grow_cheaper_tree(q, samples, columns).tree.grown_with.lean_merging_leaves);
 }
 
 TEST(GrowTree, TreeCostsTheSlicerLessThanColumns) {
