@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Fingerprints every output file of the generator on the examples (both poses) and the shared
-# benchmark models (benchmark.json scale, kept pose), for checking that a restructuring changes
+# benchmark models (benchmark.json scale: kept pose, --buildplate-only, and the pose the orientation
+# search picks, as a user runs it), for checking that a restructuring changes
 # nothing: run it before and after, then diff the two lists.
 #   bench/same_outputs.sh [cli] > before.txt ; ...change... ; bench/same_outputs.sh > after.txt
 #   diff before.txt after.txt
@@ -43,5 +44,6 @@ PY
     if [ -n "${SAME_OUTPUTS_QUICK:-}" ] && [[ $n == menger* || $n == nefertiti* ]]; then continue; fi
     run "$n" "$shared/$file" --orient keep --scale "$scale"
     run "$n-bp" "$shared/$file" --orient keep --scale "$scale" --buildplate-only
+    run "$n-auto" "$shared/$file" --scale "$scale"
   done <"$tmp/models"
 fi
