@@ -1,7 +1,8 @@
 // `clever-support view` in a real browser (Debian's chromium, driven by the pinned puppeteer-core):
 // the server refuses foreign requests, the page draws model and supports, and a strut omitted, a
-// support point and a blocker added by mouse, then Regrow, leave the .scad holding the three edits
-// and the supports exactly as `clever-support regrow` grows them from that file.
+// support point and a blocker added by mouse, then Regrow, leave the .scad holding the three edits,
+// the supports exactly as `clever-support regrow` grows them from that file, and `check` passing
+// (what the edits left bare reported as left out on purpose).
 //
 // usage: node view_test.mjs CLEVER_SUPPORT SOURCE_DIR [SCREENSHOT.png]
 // Exit 0 pass, 1 fail, 77 skipped (chromium cannot start here; with CI=true that is a failure).
@@ -231,7 +232,6 @@ async function main() {
   assert.deepEqual(scadList(edited, 'omit_struts'), [target.i]);
   say(`edits in the .scad: omit_struts ${JSON.stringify(scadList(edited, 'omit_struts'))}, support_points ` +
       `${JSON.stringify(scadList(edited, 'support_points'))}, support_blockers ${JSON.stringify(scadList(edited, 'support_blockers'))}`);
-  const omittedTops = (await page.evaluate(() => window.csView.state().struts)).filter((s) => s[6]).map((s) => s[0]);
 
   // 5. Regrow, with progress, and the view reloads.
   await page.click('#regrow');
@@ -241,19 +241,19 @@ async function main() {
   assert.equal(stage, 'regrown', `regrow finished (${message})`);
   say('regrown from the page');
   assert.deepEqual(errors, [], 'no errors in the page');
-  // check's verdict on the regrown supports, as colour: the overhang the edits left bare in red.
+  // check's verdict on the regrown supports, in the panel: it passes, what the edits left bare
+  // counted as left out on purpose (the omitted branch by the file's omit_struts, the blocker's region).
   const judged = await page.evaluate(() => window.csView.state().check);
-  assert.equal(judged.coverage_ok, false, 'the omitted branch and the blocked underside are bare');
-  assert.ok(judged.uncovered.length > 0, 'with places to mark in red');
-  const red = await page.evaluate(() => window.csView.markCount());
-  assert.ok(red.beyond >= judged.uncovered.length, `the places are drawn (${red.beyond} red marks)`);
+  assert.equal(judged.ok, true, `check passes on the regrown supports:\n${judged.summary}`);
+  assert.ok(judged.left_out_area_mm2 > 0, 'the overhang the edits left bare is counted as left out on purpose');
+  assert.match(await page.$eval('#verdict', (e) => e.textContent), /^passes: .*mm² left out on purpose by your edits\)$/);
+  assert.equal((await page.evaluate(() => window.csView.markCount())).beyond, 0, 'nothing is marked red');
 
   // The .scad holds the three edits (regrow keeps them).
   const text = fs.readFileSync(scad, 'utf8');
   assert.deepEqual(scadList(text, 'omit_struts'), [target.i]);
   assert.equal(scadList(text, 'support_points').length, 1);
   assert.equal(scadList(text, 'support_blockers').length, 1);
-  const blocker = scadList(text, 'support_blockers')[0];
 
   // The supports changed, exactly as `clever-support regrow` changes them from the edited file.
   const supportsAfter = fs.readFileSync(path.join(out, 'arches.supports.stl'));
@@ -268,25 +268,30 @@ async function main() {
   assert.equal(fs.readFileSync(path.join(twin, 'arches.scad'), 'utf8'), text, 'and the same .scad');
   assert.deepEqual(fs.readdirSync(out).sort(), filesBefore, 'the folder holds the same files (nothing else written)');
 
-  // check: every solid sound; what is bare is what the edits asked for (the omitted branch's
-  // overhang, the blocked underside).
-  let report;
-  try {
-    report = JSON.parse(run('check', '--model', path.join(out, 'arches.model.stl'), '--supports', path.join(out, 'arches.supports.stl'), '--json'));
-  } catch (e) {
-    report = JSON.parse(e.stdout);  // exit 4: some check failed; judged below
-  }
-  assert.equal(report.air_gap.ok, true);
-  assert.equal(report.penetration.bodies, 0);
-  assert.equal(report.grounding.ungrounded + report.grounding.buried_bottoms, 0);
-  assert.equal(report.closed.open + report.closed.inward, 0);
-  assert.equal(report.angles.steep, 0);
-  const sampling = first.sampling;
-  const asked = (p) => omittedTops.some((t) => Math.hypot(p[0] - t[0], p[1] - t[1]) < 2 * sampling) ||
-    (p[0] > blocker[0][0] - 2 * sampling && p[0] < blocker[1][0] + 2 * sampling &&
-     p[1] > blocker[0][1] - 2 * sampling && p[1] < blocker[1][1] + 2 * sampling);
-  for (const p of report.coverage.uncovered) assert.ok(asked(p), `overhang at ${p} is bare though no edit asked for it`);
-  say(`check: every solid sound; ${report.coverage.uncovered_area_mm2.toFixed(1)} mm² of overhang left bare where the edits asked`);
+  // `check` on the folder, as a user runs it, passes (exit 0: execFileSync throws on any other):
+  // the omitted branch's overhang and the blocked region are reported as left out on purpose.
+  const report = JSON.parse(run('check', out + '/', '--json'));
+  assert.equal(report.ok, true);
+  const leftOut = report.coverage.left_out_on_purpose;
+  assert.deepEqual(report.settings.omit_struts, [target.i]);
+  assert.equal(leftOut.regions, 1, 'the blocker is a region left out on purpose');
+  assert.ok(leftOut.omitted_struts.tips > 0 && leftOut.omitted_struts.points > 0,
+    `the omitted branch's tips and the overhang they held are reported (${JSON.stringify(leftOut.omitted_struts)})`);
+  assert.match(run('check', out + '/'), /left out on purpose by the user's edit/);
+  say(`check passes: ${leftOut.omitted_struts.area_mm2.toFixed(1)} mm² left out by omit_struts ` +
+      `(${leftOut.omitted_struts.tips} tips), ${leftOut.area_mm2.toFixed(1)} mm² in the blocked region`);
+
+  // That is the edit's doing: undo the omission (its ✕ in the panel) without regrowing, and the
+  // bare branch is judged again: red on the page, exit 4 from the command line.
+  await page.click('#edits li button');
+  await page.waitForFunction(() => window.csView.state().edits.omit_struts.length === 0);
+  const undone = await page.evaluate(() => window.csView.state().check);
+  assert.equal(undone.coverage_ok, false, 'with the omission undone, the branch\'s overhang is beyond reach');
+  assert.ok(undone.uncovered.length > 0, 'with places to mark in red');
+  const red = await page.evaluate(() => window.csView.markCount());
+  assert.ok(red.beyond >= undone.uncovered.length, `the places are drawn (${red.beyond} red marks)`);
+  assert.throws(() => run('check', out + '/'), (e) => e.status === 4, 'check fails on the folder');
+  assert.deepEqual(errors, [], 'no errors in the page');
   say('PASSED');
   return finish(0);
 }
