@@ -187,7 +187,10 @@ EditedScad read_edited_scad_text(const std::string& text, const std::string& pat
         job.params = read_params(r);
         validate_params(job.params, ParamNaming::scad);
     } catch (const ParameterError& e) {
-        throw ParameterError(path + ": " + e.what());
+        // "d_max = 4 is out of range (...)" starts with the value's .scad name: name its line too.
+        const std::string what = e.what(), name = what.substr(0, what.find(" = "));
+        if (r.has(name)) throw ParameterError(path + ":" + std::to_string(r.get(name).line) + ": " + what);
+        throw ParameterError(path + ": " + what);
     }
     out.tree = read_tree(r);
     job.edits = read_edits(r, static_cast<int>(out.tree.struts.size() + out.tree.pillar_tops.size()));  // pillars after struts

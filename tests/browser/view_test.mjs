@@ -220,7 +220,7 @@ async function main() {
   await slide('d_min', 5);  // thicker than d_max = 4
   await page.waitForFunction(() => !document.getElementById('message').hidden);
   const refusal = await page.$eval('#message', (e) => e.textContent);
-  assert.match(refusal, /arches\.scad: .*d_min/, 'the message names the file and the value, as regrow says it');
+  assert.match(refusal, /arches\.scad:\d+: d_max = 4 is out of range/, 'the message names the file, the line and the value, as regrow says it');
   say(`refused: "${refusal}"`);
   assert.deepEqual(errors, ['Failed to load resource: the server responded with a status of 400 (Bad Request)'],
     'the refused edit is the only failed request');

@@ -326,6 +326,12 @@ TEST(ScadEdit, BrokenEditsNameTheLine) {
         EXPECT_NE(r.out.find(where), std::string::npos) << "expected " << where << " in: " << r.out;
         EXPECT_NE(r.out.find(c.phrase), std::string::npos) << r.out;
     }
+    // A value out of its range (a parameter error, exit 2) names its line too.
+    write_text(t.scad, with_line(text, "d_max =", "d_max = 0.5;"));
+    auto r = cs("regrow -q " + quote(t.scad));
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_NE(r.out.find("tee.scad:" + std::to_string(line_number_of(text, "d_max =")) + ": d_max = 0.5 is out of range"),
+              std::string::npos) << r.out;
 }
 
 TEST(ScadEdit, AStrayLineIsAnErrorAtItsOwnLine) {
