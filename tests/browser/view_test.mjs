@@ -44,6 +44,16 @@ const scadList = (text, name) => {
   return JSON.parse(m[1]);
 };
 
+// An ASCII STL of the box from corner `a` to corner `b`, its faces outward.
+function boxStl(a, b) {
+  const v = [];
+  for (const z of [a[2], b[2]]) for (const y of [a[1], b[1]]) for (const x of [a[0], b[0]]) v.push([x, y, z]);
+  const quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+  const facets = quads.flatMap(([p, q, r, t]) => [[p, q, r], [p, r, t]]).map((f) =>
+    ` facet normal 0 0 0\n  outer loop\n${f.map((i) => `   vertex ${v[i].join(' ')}`).join('\n')}\n  endloop\n endfacet`);
+  return `solid box\n${facets.join('\n')}\nendsolid box\n`;
+}
+
 // A raw request: the path exactly as given (no normalising), any Host header.
 function request(port, rawPath, host, method = 'GET', body = null) {
   return new Promise((resolve, reject) => {
@@ -291,6 +301,27 @@ async function main() {
   const red = await page.evaluate(() => window.csView.markCount());
   assert.ok(red.beyond >= undone.uncovered.length, `the places are drawn (${red.beyond} red marks)`);
   assert.throws(() => run('check', out + '/'), (e) => e.status === 4, 'check fails on the folder');
+
+  // A solid fused into the model (a 2 mm cube planted in the arches' beam, in place of the
+  // supports) is marked magenta once the page next asks (here: removing the support point).
+  fs.writeFileSync(path.join(out, 'arches.supports.stl'), boxStl([-1, -1, 39.5], [1, 1, 41.5]));
+  await page.click('#edits ul:nth-of-type(1) li button');
+  await page.waitForFunction(() => window.csView.state().edits.support_points.length === 0);
+  const planted = await page.evaluate(() => window.csView.state().check);
+  assert.ok(planted.flagged.some((f) => /fused/.test(f.what)) && planted.flagged.some((f) => /too deep|penetration/.test(f.what)),
+    `the fused, penetrating solid is flagged (${JSON.stringify(planted.flagged.map((f) => f.what))})`);
+  assert.ok((await page.evaluate(() => window.csView.markCount())).flagged > 0, 'and marked in magenta');
+  assert.match(await page.$eval('#verdict', (e) => e.textContent), /solid problem\(s\) \(magenta\)/);
+
+  // A regrow that fails (the input moved away, as a hand edit of cs_input_path says) shows regrow's
+  // own error and leaves the outputs as they were.
+  fs.writeFileSync(scad, fs.readFileSync(scad, 'utf8').replace(/^cs_input_path = .*$/m, 'cs_input_path = "/nonexistent/arches.stl";'));
+  const supportsPlanted = fs.readFileSync(path.join(out, 'arches.supports.stl'));
+  await page.click('#regrow');
+  await page.waitForFunction(() => window.csView.regrows === 2, { timeout: 300000 });
+  assert.equal(await page.$eval('#stage', (e) => e.textContent), 'regrow failed (exit 3)');
+  assert.match(await page.$eval('#message', (e) => e.textContent), /error: \/nonexistent\/arches\.stl: cannot open/);
+  assert.ok(fs.readFileSync(path.join(out, 'arches.supports.stl')).equals(supportsPlanted), 'nothing was rewritten');
   assert.deepEqual(errors, [], 'no errors in the page');
   say('PASSED');
   return finish(0);
