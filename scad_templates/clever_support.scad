@@ -245,6 +245,27 @@ module cs_tree(tree, omit, highlight, k, d_min, d_max, strength_length, wall, ti
     }
 }
 
+// A wall under a ceiling low over the bed (generator/ceilings): its cross-section, from the bed
+// up to the top at each station and `t` wide, swept along the stations (one straight line); one
+// polyhedron with explicit triangle caps.
+module cs_wall(top, t) {
+    n = len(top);
+    along = [top[n - 1][0] - top[0][0], top[n - 1][1] - top[0][1]];
+    o = [-along[1], along[0]] * (t / 2 / norm(along));
+    e = 4 * (n - 1);
+    polyhedron(
+        points = [for (p = top) each [[p[0] - o[0], p[1] - o[1], 0], [p[0] + o[0], p[1] + o[1], 0],
+                                      [p[0] + o[0], p[1] + o[1], p[2]], [p[0] - o[0], p[1] - o[1], p[2]]]],
+        faces = concat([[0, 1, 2], [0, 2, 3], [e, e + 2, e + 1], [e, e + 3, e + 2]],
+                       [for (s = [0 : n - 2], i = [0 : 3]) let(a = 4 * s + i, b = 4 * s + (i + 1) % 4) [a, b + 4, b]],
+                       [for (s = [0 : n - 2], i = [0 : 3]) let(a = 4 * s + i, b = 4 * s + (i + 1) % 4) [a, a + 4, b + 4]]),
+        convexity = 2);
+}
+
+module cs_walls(walls, t) {
+    color("darkorange") for (w = walls) cs_wall(w, t);
+}
+
 // A user's support blockers (see-through blue) and support points (red) in the preview only:
 // never part of a rendered solid.
 module cs_show_edits(blockers, points) {

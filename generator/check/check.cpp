@@ -56,6 +56,10 @@ struct Shell {
     Vec3 contact;                  // the model point above a top contact
     Vec3 gap_at;                   // the point of its top closest to the model above
     bool bottom_on_model = false;  // stands on the model, a gap above it
+    // A long top (a wall's, README "check"): every point of it with the model right above is a
+    // contact, not its centre alone.
+    bool long_top = false;
+    std::vector<Vec3> contacts;  // the model points above a long top's contact points
 };
 
 void ring(const Mesh& m, bool highest, Vec3& centre, double& width, double& z) {
@@ -133,6 +137,56 @@ void find_top_contact(const ModelQuery& q, Shell& s, const Tolerances& t) {
     s.gap_at = where;
     s.top_contact = gap <= t.gap + t.contact_slack;
     s.contact = {s.top.x, s.top.y, where.z + gap};
+}
+
+// Faces of a solid that face up more steeply than the critical angle allows a printed surface to
+// lean: a top the model can rest on.
+std::vector<const Triangle*> up_faces(const Mesh& m, double critical_angle) {
+    const double up = std::cos(deg_to_rad(critical_angle));
+    std::vector<const Triangle*> out;
+    for (const auto& f : m.faces) {
+        const Vec3 n = face_normal_unnormalized(m, f);
+        const double l = norm(n);
+        if (l > 0 && n.z >= up * l) out.push_back(&f);
+    }
+    return out;
+}
+
+// A top that reaches farther than `reach` across (a wall under a ceiling, not a tip's square) is
+// judged at points over all of it: each with the model a gap (plus slack) above is a contact, the
+// smallest of their gaps is the solid's air gap, and the solid's axis ends at the top's middle.
+void find_long_top(const ModelQuery& q, Shell& s, const Params& p, const Tolerances& t) {
+    const auto faces = up_faces(s.mesh, p.critical_angle);
+    Box3 box{{INFINITY, INFINITY, 0}, {-INFINITY, -INFINITY, 0}};
+    for (const Triangle* f : faces)
+        for (auto v : *f) {
+            const Vec3& x = s.mesh.vertices[v];
+            box.min.x = std::min(box.min.x, x.x), box.min.y = std::min(box.min.y, x.y);
+            box.max.x = std::max(box.max.x, x.x), box.max.y = std::max(box.max.y, x.y);
+        }
+    if (faces.empty() || std::hypot(box.max.x - box.min.x, box.max.y - box.min.y) <= 2 * t.reach) return;
+    s.long_top = true;
+    s.top_contact = false;
+    s.top_gap = INFINITY;
+    Vec3 middle;
+    double area = 0;
+    for (const Triangle* f : faces) {
+        const Vec3 &a = s.mesh.vertices[(*f)[0]], &b = s.mesh.vertices[(*f)[1]], &c = s.mesh.vertices[(*f)[2]];
+        const double fa = 0.5 * norm(cross(b - a, c - a));
+        middle += (a + b + c) * (fa / 3), area += fa;
+        const int n = std::max(1, static_cast<int>(std::ceil(std::max({distance(a, b), distance(b, c), distance(c, a)}) / (0.5 * t.spacing))));
+        for (int i = 0; i <= n; ++i)
+            for (int j = 0; i + j <= n; ++j) {
+                const Vec3 x = a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n);
+                const double gap = gap_up(q, x);
+                if (gap > t.gap + t.contact_slack) continue;
+                s.top_contact = true;
+                s.contacts.push_back({x.x, x.y, x.z + gap});
+                if (gap < s.top_gap) s.top_gap = gap, s.gap_at = x;
+            }
+    }
+    if (area > 0) s.top = middle / area;
+    if (s.top_contact) s.contact = s.contacts.front();
 }
 
 // Does the solid's foot stand on the model, within a gap below it? Its centre and four points of
@@ -316,8 +370,12 @@ void check_coverage(const Mesh& model, const ModelQuery& q, const std::vector<Sh
                     const Tolerances& t, CheckResult& r) {
     JudgeOverhangs j = judge_overhangs(model, p.critical_angle, p.layer_height, t.spacing);
     NearGrid near(t.reach);
-    for (const auto& s : shells)
-        if (s.top_contact) near.add(s.contact), ++r.contacts;
+    for (const auto& s : shells) {
+        if (!s.top_contact) continue;
+        ++r.contacts;
+        if (!s.long_top) near.add(s.contact);
+        for (const auto& c : s.contacts) near.add(c);
+    }
     for (const auto& a : j.corner_anchors) near.add(a);
     const Vec3 just_below{0, 0, 0.01};
     std::vector<const JudgePoint*> need;
@@ -366,6 +424,7 @@ CheckResult check_supports(const Mesh& model_in, const Mesh& supports, const Par
     r.bodies = shells.size();
     for (auto& s : shells) {
         find_top_contact(q, s, t);
+        find_long_top(q, s, p, t);
         s.bottom_on_model = s.zmin > kOnBed && rests_on_model(q, s, t.gap + (t.gap - t.gap_min));
         check_shape(s, p, o, r);
         check_air_gap(s, t, r);

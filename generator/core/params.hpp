@@ -43,6 +43,10 @@ struct Params {
     bool supports_on_model = true;       // false = --buildplate-only
     Strategy strategy = Strategy::tree;
     double model_clearance = 0.3;        // extra air kept between a strut and the model
+    // Walls under ceilings that fall freely to the bed (ceilings/ceilings.hpp): rows at most this
+    // far apart, joined into a meander; 0: trees everywhere. At most 1.4 x sampling_distance, so
+    // every point between two rows is within check's lattice reach of one (chosen by bench).
+    double ceiling_span = 3.4;
     // Support blockers (placed-model coordinates): no tip, strut, foot or pillar may enter them.
     // Set from a user's edits (--block, support_blockers in a generated .scad); empty by default.
     std::vector<Box3> keep_out;

@@ -53,6 +53,7 @@ json supports_json(const Supports& s, const Params& p) {
             {"dropped_branches", st.dropped_branches},
             {"undone_joins", st.undone},
             {"bodies", s.bodies.size()},
+            {"ceiling_walls", s.walls.size()},
             {"total_strut_length_mm", s.length},
             {"support_volume_mm3", s.volume},
             {"bodies_volume_mm3", s.bodies_volume},

@@ -183,6 +183,19 @@ std::string tree_data(const Supports& sp) {
     return s;
 }
 
+// The walls under ceilings low over the bed: each a list of stations along one straight line.
+std::string wall_data(const Supports& sp) {
+    Rows walls;
+    for (size_t i = 0; i < sp.walls.size(); ++i) {
+        std::string tops;
+        for (size_t k = 0; k < sp.walls[i].top.size(); ++k) tops += (k ? ", " : "") + pt(sp.walls[i].top[k]);
+        walls.push_back({std::to_string(i) + (sp.walls[i].join ? " join" : " row"), "[" + tops + "]"});
+    }
+    std::string s = "// Walls under ceilings low over the bed, `wall` thick, standing on the bed: [x, y, z] of the\n"
+                    "// top at each station along one straight line (a gap under the ceiling)\n";
+    return s + record_list("cs_walls", walls) + "\n";
+}
+
 }  // namespace
 
 std::string scad_number(double v) {
@@ -214,12 +227,14 @@ std::string emit_scad(const Supports& sp, const Job& job, const ScadMeta& meta) 
     s += regrow_section(job.params);
     s += provenance(job, meta);
     s += tree_data(sp);
+    s += wall_data(sp);
     s += "include <clever_support.scad>\n\n";
     s += "union() {\n";
     s += "    if (show_model) color(\"lightgray\") import(cs_model_file, convexity = 10);\n";
     s += "    if (show_supports)\n";
     s += "        cs_tree(cs_tree_record, omit_struts, highlight_strut, k, d_min, d_max, strength_length, wall, tip_length,\n";
     s += "                tip_diameter, feet, foot_height, foot_extra, clearance);\n";
+    s += "    if (show_supports) cs_walls(cs_walls, wall);\n";
     s += "}\n";
     s += "cs_show_edits(support_blockers, support_points);  // in the preview only\n";
     return s;

@@ -130,14 +130,20 @@ SupportTree grow_cheaper_tree(const ModelQuery& q, const SupportTree& hung, cons
     return best;
 }
 
-Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit) {
+Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit, std::vector<CeilingWall> walls) {
     Supports s;
     s.grown_struts = grown.struts;
     s.sized = size_struts(prune_struts(std::move(grown), omit), p);
     s.bodies = build_bodies(s.sized, p);
     s.mesh = bodies_mesh(s.bodies, p.wall_thickness);
-    s.bodies_volume = signed_volume(s.mesh);  // separate closed shells: their volumes add
     s.volume = solid_volume(s.bodies, p.wall_thickness);
+    s.walls = std::move(walls);
+    for (const auto& w : s.walls) {
+        const Mesh m = wall_mesh(w, p.wall_thickness);
+        s.volume += signed_volume(m);
+        append(s.mesh, m);
+    }
+    s.bodies_volume = signed_volume(s.mesh);  // separate closed shells: their volumes add
     s.length = s.sized.tree.total_length();
     return s;
 }
@@ -322,11 +328,16 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         sort_top_down(r.samples.samples);
         hung = hang_leaves(*query, r.samples.samples, p);  // the new samples' leaves, in sample order
     }
+    // Walls under ceilings low over the bed take the samples they carry; the tree grows from the rest.
+    Ceilings ceilings = sw.time("ceilings", progress, [&] { return support_ceilings(*query, r.samples.samples, p); });
+    const SupportTree hung_rest = ceilings.walls.empty() ? SupportTree{} : hang_leaves(*query, ceilings.rest, p);
     // The tree and the columns baseline start from the same leaves (hanging them does not depend
-    // on the strategy).
-    SupportTree grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, hung, p); });
+    // on the strategy); the baseline carries every sample.
+    SupportTree grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, ceilings.walls.empty() ? hung : hung_rest, p); });
     // The user's omitted struts are numbered in the final tree (the one the .scad shows).
-    r.supports = sw.time("struts", progress, [&] { return finish_supports(std::move(grown), p, job.edits.omit_struts); });
+    r.supports = sw.time("struts", progress, [&] {
+        return finish_supports(std::move(grown), p, job.edits.omit_struts, std::move(ceilings.walls));
+    });
     Params columns = p;
     columns.strategy = Strategy::columns;
     r.columns = sw.time("columns baseline", progress, [&] { return finish_supports(grow_tree(*query, hung, columns), columns); });

@@ -10,6 +10,7 @@
 
 #include "core/geometry.hpp"
 #include "core/params.hpp"
+#include "ceilings/ceilings.hpp"
 #include "core/sha256.hpp"
 #include "mesh/repair.hpp"
 #include "orient/orient.hpp"
@@ -51,9 +52,11 @@ struct Supports {
     SizedTree sized;
     std::vector<Strut> grown_struts;  // before omit_struts pruned them: the numbering edits refer to
     std::vector<Body> bodies;
-    Mesh mesh;
+    std::vector<CeilingWall> walls;  // under ceilings low over the bed (ceilings/ceilings.hpp)
+    Mesh mesh;                       // the bodies, then the walls
     double volume = 0;         // of the support solid, overlaps at joints counted once (solid_volume), mm^3
     double bodies_volume = 0;  // the bodies' volumes added up, overlaps counted twice, mm^3
+                               // (both volumes add the walls' own, their joins' ends counted twice)
     double length = 0;  // total strut length (mm)
 };
 
@@ -97,8 +100,9 @@ SupportTree grow_cheaper_tree(const ModelQuery& placed, const std::vector<Sample
 // The same from the leaves hang_leaves (tree.hpp) hung for the samples.
 SupportTree grow_cheaper_tree(const ModelQuery& placed, const SupportTree& hung, const Params& p);
 // Sizes a grown tree into supports: struts in `omit` (indices into `grown`) are pruned with their
-// branches first.
-Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit = {});
+// branches first. `walls` (support_ceilings) join the supports as they are.
+Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit = {},
+                         std::vector<CeilingWall> walls = {});
 
 // The tree without the struts in `omit` and everything that hangs from them (the struts above, up
 // to the leaves). Nodes keep their indices; those left without a strut become Dropped. Throws

@@ -1,0 +1,134 @@
+// ceilings/: walls under ceilings low over the bed, and how `check` judges a wall's long top.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ceilings/ceilings.hpp"
+#include "check/check.hpp"
+#include "overhang/overhang.hpp"
+#include "pipeline/pipeline.hpp"
+#include "query/model_query.hpp"
+#include "shapes.hpp"
+
+using namespace cs;
+
+namespace {
+
+struct Walled {
+    Mesh model;
+    Params p;
+    OverhangSamples samples;
+    Ceilings ceilings;
+};
+
+Walled walled(const Mesh& model, Params p = {}) {
+    Walled w{model, p, {}, {}};
+    ModelQuery q(w.model);
+    w.samples = sample_overhangs(w.model, {p.critical_angle, p.sampling_distance, p.layer_height, touching_space(p)}, &q);
+    w.ceilings = support_ceilings(q, w.samples.samples, p);
+    return w;
+}
+
+Mesh walls_mesh(const std::vector<CeilingWall>& walls, double thickness) {
+    Mesh m;
+    for (const auto& w : walls) append(m, wall_mesh(w, thickness));
+    return m;
+}
+
+}  // namespace
+
+TEST(Ceilings, ABridgeDeckGetsOneMeanderThatCarriesItsSamples) {
+    Walled w = walled(test::bridge_shape());
+    ASSERT_FALSE(w.ceilings.walls.empty());
+    EXPECT_EQ(w.ceilings.regions, 1u);
+    std::size_t rows = 0, joins = 0;
+    for (const auto& wall : w.ceilings.walls) (wall.join ? joins : rows) += 1;
+    EXPECT_GE(rows, 2u);
+    EXPECT_EQ(joins, rows - 1);  // one meander: every row joined to the next
+    EXPECT_GT(w.ceilings.covered, w.samples.samples.size() / 2);
+    EXPECT_EQ(w.ceilings.covered + w.ceilings.rest.size(), w.samples.samples.size());
+    for (const auto& wall : w.ceilings.walls)
+        for (const auto& t : wall.top) {
+            EXPECT_NEAR(t.z, 8 - w.p.gap, 1e-6);  // a gap under the deck, all along
+            EXPECT_LT(std::abs(t.x), 8 - tip_side_clearance(w.p) + 1e-9);  // clear of the pillars
+            EXPECT_LT(std::abs(t.y), 3);
+        }
+}
+
+TEST(Ceilings, RowsAreAtMostTheSpanApart) {
+    Params p;
+    p.ceiling_span = 2.0;
+    Walled w = walled(test::bridge_shape(), p);
+    std::vector<double> ys;
+    for (const auto& wall : w.ceilings.walls)
+        if (!wall.join) ys.push_back(wall.top.front().y);
+    std::sort(ys.begin(), ys.end());
+    ASSERT_GE(ys.size(), 3u);
+    for (std::size_t i = 1; i < ys.size(); ++i) EXPECT_LE(ys[i] - ys[i - 1], p.ceiling_span + 1e-9);
+}
+
+TEST(Ceilings, SpanZeroAndTheColumnsStrategyLeaveEverySampleToTheTree) {
+    Params p;
+    p.ceiling_span = 0;
+    Walled w = walled(test::bridge_shape(), p);
+    EXPECT_TRUE(w.ceilings.walls.empty());
+    EXPECT_EQ(w.ceilings.rest.size(), w.samples.samples.size());
+    Params c;
+    c.strategy = Strategy::columns;
+    EXPECT_TRUE(walled(test::bridge_shape(), c).ceilings.walls.empty());
+}
+
+TEST(Ceilings, NoWallStandsWhereTheFallToTheBedIsBlocked) {
+    Walled w = walled(test::cantilever_over_box());
+    for (const auto& wall : w.ceilings.walls)
+        for (const auto& t : wall.top) {
+            const bool over_box = t.x > 12 - 0.5 && t.x < 24 + 0.5 && t.y > 2 - 0.5 && t.y < 8 + 0.5;
+            EXPECT_FALSE(over_box) << "a wall at (" << t.x << ", " << t.y << ") stands on the box";
+        }
+}
+
+TEST(Ceilings, WallMeshesAreClosedAndFaceOutward) {
+    CeilingWall wall{{{0, 0, 5}, {0.5, 0, 5.2}, {1, 0, 5.4}, {1.5, 0, 5.1}}};
+    Mesh m = wall_mesh(wall, 0.5);
+    EXPECT_TRUE(is_closed_and_consistent(m));
+    EXPECT_GT(signed_volume(m), 0);
+    // The volume of a wall 0.5 thick under a piecewise-linear top.
+    EXPECT_NEAR(signed_volume(m), 0.5 * 0.5 * ((5 + 5.2) / 2 + (5.2 + 5.4) / 2 + (5.4 + 5.1) / 2), 1e-9);
+    CeilingWall along_y{{{2, 0, 3}, {2, 2, 3}}};
+    EXPECT_TRUE(is_closed_and_consistent(wall_mesh(along_y, 0.5)));
+    EXPECT_NEAR(signed_volume(wall_mesh(along_y, 0.5)), 0.5 * 2 * 3, 1e-9);
+}
+
+TEST(Ceilings, CheckPassesTheBridgeWithWallsAndTheTreeForTheRest) {
+    Walled w = walled(test::bridge_shape());
+    ASSERT_FALSE(w.ceilings.walls.empty());
+    Supports s = build_supports(w.model, w.ceilings.rest, w.p);
+    Mesh all = s.mesh;
+    append(all, walls_mesh(w.ceilings.walls, w.p.wall_thickness));
+    CheckResult r = check_supports(w.model, all, w.p, {});
+    EXPECT_TRUE(r.ok()) << r.summary();
+    // Without the walls the deck is not covered: the walls' tops are its contacts.
+    CheckResult bare = check_supports(w.model, s.mesh, w.p, {});
+    EXPECT_FALSE(bare.coverage_ok());
+}
+
+// check/: a long top is a contact along its whole length.
+TEST(CheckWalls, AWallsLongTopIsAContactAlongItsWholeLength) {
+    Mesh model = test::bridge_shape();
+    Params p;
+    // One wall along x under the deck's middle, a gap below it: points near it along its whole
+    // length are covered, points far across are not.
+    CeilingWall wall{{{-7.5, 0, 8 - p.gap}, {7.5, 0, 8 - p.gap}}};
+    CheckResult r = check_supports(model, wall_mesh(wall, p.wall_thickness), p, {});
+    EXPECT_EQ(r.contacts, 1u);
+    EXPECT_EQ(r.fused_contacts, 0u);
+    EXPECT_EQ(r.open_bodies + r.inward_bodies + r.steep_bodies + r.ungrounded_bodies + r.penetrating_bodies, 0u);
+    EXPECT_GT(r.covered, 20u);
+    EXPECT_FALSE(r.coverage_ok());  // |y| near 3 is beyond reach of one wall at y = 0
+    // Lowered by two millimetres it holds nothing up.
+    CeilingWall low{{{-7.5, 0, 6}, {7.5, 0, 6}}};
+    EXPECT_EQ(check_supports(model, wall_mesh(low, p.wall_thickness), p, {}).contacts, 0u);
+    // Raised into the deck's gap it is fused along its length.
+    CeilingWall fused{{{-7.5, 0, 8 - 0.05}, {7.5, 0, 8 - 0.05}}};
+    EXPECT_EQ(check_supports(model, wall_mesh(fused, p.wall_thickness), p, {}).fused_contacts, 1u);
+}
