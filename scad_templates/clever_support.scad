@@ -245,20 +245,17 @@ module cs_tree(tree, omit, highlight, k, d_min, d_max, strength_length, wall, ti
     }
 }
 
-// A wall under a ceiling low over the bed (generator/ceilings): its cross-section, from the bed
-// up to the top at each station and `t` wide, swept along the stations (one straight line); one
-// polyhedron with explicit triangle caps.
-module cs_wall(top, t) {
-    n = len(top);
-    along = [top[n - 1][0] - top[0][0], top[n - 1][1] - top[0][1]];
+// A wall under a low ceiling (generator/ceilings): a box `t` thick across the line from w[0] to
+// w[1], from z = w[2] up to z = w[3]; one polyhedron with explicit triangles.
+module cs_wall(w, t) {
+    along = w[1] - w[0];
     o = [-along[1], along[0]] * (t / 2 / norm(along));
-    e = 4 * (n - 1);
     polyhedron(
-        points = [for (p = top) each [[p[0] - o[0], p[1] - o[1], 0], [p[0] + o[0], p[1] + o[1], 0],
-                                      [p[0] + o[0], p[1] + o[1], p[2]], [p[0] - o[0], p[1] - o[1], p[2]]]],
-        faces = concat([[0, 1, 2], [0, 2, 3], [e, e + 2, e + 1], [e, e + 3, e + 2]],
-                       [for (s = [0 : n - 2], i = [0 : 3]) let(a = 4 * s + i, b = 4 * s + (i + 1) % 4) [a, b + 4, b]],
-                       [for (s = [0 : n - 2], i = [0 : 3]) let(a = 4 * s + i, b = 4 * s + (i + 1) % 4) [a, a + 4, b + 4]]),
+        points = [for (c = [w[0], w[1]]) each [[c[0] - o[0], c[1] - o[1], w[2]], [c[0] + o[0], c[1] + o[1], w[2]],
+                                                [c[0] + o[0], c[1] + o[1], w[3]], [c[0] - o[0], c[1] - o[1], w[3]]]],
+        faces = concat([[0, 1, 2], [0, 2, 3], [4, 6, 5], [4, 7, 6]],
+                       [for (i = [0 : 3]) let(b = (i + 1) % 4) [i, b + 4, b]],
+                       [for (i = [0 : 3]) let(b = (i + 1) % 4) [i, i + 4, b + 4]]),
         convexity = 2);
 }
 

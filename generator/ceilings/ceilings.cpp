@@ -36,15 +36,30 @@ constexpr double kLineSpeed = 40.0;
 // islands per layer fall roughly as kMergeHeight / height.
 constexpr double kMergeHeight = 2.0;
 
-// The first thing above the bed at (x, y): the ceiling's height when it is an overhang face
-// (steeper than the critical angle, seen from below), nothing otherwise.
-std::optional<double> ceiling_over_bed(const ModelQuery& q, double x, double y, double overhang_nz) {
-    auto hit = q.first_hit({x, y, 1e-4}, {0, 0, 1});
-    if (!hit) return std::nullopt;
+// The ceiling over (x, y) near height z_ref: the first face above z_ref - rise when it is an
+// overhang face (steeper than the critical angle, seen from below) within rise of z_ref.
+std::optional<double> ceiling_near(const ModelQuery& q, double x, double y, double z_ref, double rise, double overhang_nz) {
+    auto hit = q.first_hit({x, y, z_ref - rise}, {0, 0, 1});
+    if (!hit || hit->point.z > z_ref + rise) return std::nullopt;
     const Vec3 n = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
     const double l = norm(n);
     if (!(l > 0) || n.z / l > overhang_nz) return std::nullopt;
     return hit->point.z;
+}
+
+// Nearly level floors only: a wall's foot is one flat piece a gap above the highest point under it.
+constexpr double kLevelFloor = 0.95;
+
+// Where a wall under x may stand: the bed (0), or a level face of the model a gap below... the
+// floor's height; nothing where the fall lands on a slope or less than a wall's room is left.
+std::optional<double> floor_under(const ModelQuery& q, const Vec3& x, const Params& p) {
+    auto hit = q.first_hit(x - Vec3{0, 0, 1e-3}, {0, 0, -1});
+    if (!hit) return 0.0;
+    const Vec3 n = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
+    if (!(n.z > kLevelFloor * norm(n))) return std::nullopt;
+    const double z = hit->point.z + p.gap;
+    if (x.z - p.gap - z < touching_space(p) + p.tip_length) return std::nullopt;
+    return z;
 }
 
 // How far above or below a sample its own stretch of surface may lie at `reach` from it: the
@@ -52,6 +67,14 @@ std::optional<double> ceiling_over_bed(const ModelQuery& q, double x, double y, 
 double same_surface_rise(const Params& p, double reach) {
     return reach * std::tan(deg_to_rad(90 - p.critical_angle)) + p.layer_height;
 }
+
+// A wall while it is laid out: stations along a line, the top (one gap under the ceiling) and the
+// floor (the bed, or one gap over the model) at each; cut into flat pieces at the end.
+struct Run {
+    std::vector<Vec3> top;
+    std::vector<double> floor;
+    bool join = false;
+};
 
 struct Region {
     std::vector<std::size_t> samples;
@@ -66,7 +89,7 @@ std::vector<Region> free_regions(const ModelQuery& q, const std::vector<Sample>&
     XyGrid<std::size_t> grid(sd);
     for (std::size_t i = 0; i < samples.size(); ++i) {
         const Vec3& s = samples[i].p;
-        if (s.z < low || q.first_hit(s - Vec3{0, 0, 1e-3}, {0, 0, -1})) continue;
+        if (s.z < low || !floor_under(q, s, p)) continue;
         free[i] = 1;
         grid.insert(s, i);
     }
@@ -103,43 +126,58 @@ struct Frame {
     Vec3 at(double u, double v, double z) const { return along_x ? Vec3{u, v, z} : Vec3{v, u, z}; }
 };
 
-// The top of a wall at one station: a gap under the lowest ceiling over its width and side
-// clearance, all of it this region's overhang (near a sample of it); nothing where any part is not.
-std::optional<double> station_top(const ModelQuery& q, const XyGrid<std::size_t>& region, const std::vector<Sample>& samples,
-                                  const Vec3& c, const Vec3& across, const Params& p, double overhang_nz) {
+// The floor and top of a wall at one station: the top a gap under the lowest ceiling over its
+// width and side clearance, all of it this region's overhang (near a sample of it); the floor the
+// bed, or a gap over a level face of the model the same under all of it. Nothing where any part
+// is not so.
+std::optional<std::pair<double, double>> station(const ModelQuery& q, const XyGrid<std::size_t>& region,
+                                                 const std::vector<Sample>& samples, const Vec3& c, const Vec3& across,
+                                                 const Params& p, double overhang_nz) {
     const double half = 0.5 * p.wall_thickness + tip_side_clearance(p), rise = same_surface_rise(p, p.sampling_distance);
     const Vec3 along{across.y, -across.x, 0};  // a wall may end at this station: clearance beyond it too
     const double side = tip_side_clearance(p);
-    double lowest = INFINITY;
+    double lowest = INFINITY, floor_lo = INFINITY, floor_hi = -INFINITY;
     for (const Vec3 offset : {Vec3{}, across * -half, across * half, along * side, along * -side}) {
         const Vec3 x = c + offset;
-        auto z = ceiling_over_bed(q, x.x, x.y, overhang_nz);
-        if (!z) return std::nullopt;
-        bool near = region.visit_near(x, 1, [&](std::size_t i) {
-            return horizontal_distance(samples[i].p, x) <= p.sampling_distance && std::abs(samples[i].p.z - *z) <= rise;
+        std::optional<double> z_ref;
+        region.visit_near(x, 1, [&](std::size_t i) {
+            if (horizontal_distance(samples[i].p, x) > p.sampling_distance) return false;
+            z_ref = samples[i].p.z;
+            return true;
         });
-        if (!near) return std::nullopt;
+        if (!z_ref) return std::nullopt;
+        auto z = ceiling_near(q, x.x, x.y, *z_ref, rise, overhang_nz);
+        if (!z) return std::nullopt;
+        auto floor = floor_under(q, {x.x, x.y, *z}, p);
+        if (!floor) return std::nullopt;
         lowest = std::min(lowest, *z);
+        floor_lo = std::min(floor_lo, *floor), floor_hi = std::max(floor_hi, *floor);
     }
+    if (floor_hi - floor_lo > p.layer_height) return std::nullopt;
     const double top = lowest - p.gap;
-    return top > touching_space(p) ? std::optional<double>(top) : std::nullopt;
+    if (top - floor_hi < touching_space(p)) return std::nullopt;
+    return std::pair{floor_hi, top};
 }
 
-// The walls along one line (u from u0 to u1 at v): runs of stations where a top exists.
-std::vector<CeilingWall> walls_along(const ModelQuery& q, const XyGrid<std::size_t>& region, const std::vector<Sample>& samples,
-                                     const Frame& f, double v, double u0, double u1, const Params& p, double overhang_nz) {
+// The walls along one line (u from u0 to u1 at v): runs of stations where a wall fits.
+std::vector<Run> walls_along(const ModelQuery& q, const XyGrid<std::size_t>& region, const std::vector<Sample>& samples,
+                             const Frame& f, double v, double u0, double u1, const Params& p, double overhang_nz) {
     const Vec3 across = f.at(0, 1, 0);
-    std::vector<CeilingWall> out;
-    CeilingWall cur;
+    std::vector<Run> out;
+    Run cur;
     auto close = [&] {
         if (cur.top.size() >= 2 && horizontal_distance(cur.top.front(), cur.top.back()) >= kMinWall) out.push_back(cur);
-        cur.top.clear();
+        cur = Run{};
     };
     const int n = static_cast<int>(std::floor((u1 - u0) / kStation));
     for (int i = 0; i <= n; ++i) {
         const Vec3 c = f.at(u0 + i * kStation, v, 0);
-        if (auto top = station_top(q, region, samples, c, across, p, overhang_nz)) cur.top.push_back({c.x, c.y, *top});
-        else close();
+        if (auto st = station(q, region, samples, c, across, p, overhang_nz)) {
+            cur.top.push_back({c.x, c.y, st->second});
+            cur.floor.push_back(st->first);
+        } else {
+            close();
+        }
     }
     close();
     return out;
@@ -148,17 +186,18 @@ std::vector<CeilingWall> walls_along(const ModelQuery& q, const XyGrid<std::size
 double coord(const Vec3& a, bool x) { return x ? a.x : a.y; }
 
 // A join between rows at v_a and v_b, at u: the wall across, or nothing where it does not fit.
-std::optional<CeilingWall> join_at(const ModelQuery& q, const XyGrid<std::size_t>& region, const std::vector<Sample>& samples,
-                                   const Frame& f, double u, double v_a, double v_b, const Params& p, double overhang_nz) {
+std::optional<Run> join_at(const ModelQuery& q, const XyGrid<std::size_t>& region, const std::vector<Sample>& samples,
+                           const Frame& f, double u, double v_a, double v_b, const Params& p, double overhang_nz) {
     const Vec3 side = f.at(1, 0, 0);
-    CeilingWall w;
+    Run w;
     w.join = true;
     const int n = std::max(1, static_cast<int>(std::ceil((v_b - v_a) / kStation)));
     for (int i = 0; i <= n; ++i) {
         const Vec3 c = f.at(u, v_a + (v_b - v_a) * i / n, 0);
-        auto top = station_top(q, region, samples, c, side, p, overhang_nz);
-        if (!top) return std::nullopt;
-        w.top.push_back({c.x, c.y, *top});
+        auto st = station(q, region, samples, c, side, p, overhang_nz);
+        if (!st) return std::nullopt;
+        w.top.push_back({c.x, c.y, st->second});
+        w.floor.push_back(st->first);
     }
     return w;
 }
@@ -168,34 +207,34 @@ constexpr double kMaxCut = 1.5;
 
 // Can the row (stations in increasing u) end at u = `end` on that side, cutting at most kMaxCut,
 // without losing its other end?
-bool can_end_at(const CeilingWall& w, double end, bool along_x, bool high_end) {
+bool can_end_at(const Run& w, double end, bool along_x, bool high_end) {
     const double first = coord(w.top.front(), along_x), last = coord(w.top.back(), along_x);
     if (high_end) return end <= last + 1e-9 && last - end <= kMaxCut && end - first >= kMinWall;
     return end >= first - 1e-9 && end - first <= kMaxCut && last - end >= kMinWall;
 }
 
-// Cuts the row to end at u = `end` on that side; the new end's top is the lower of the two
-// stations around it (the ceiling between them is not known finer).
-void end_at(CeilingWall& w, double end, bool along_x, bool high_end) {
-    std::vector<Vec3> kept;
-    double z = INFINITY;
+// Cuts the row to end at u = `end` on that side; the new end's top is the lower, its floor the
+// higher, of the stations around it (the ceiling between them is not known finer).
+void end_at(Run& w, double end, bool along_x, bool high_end) {
+    Run kept;
+    kept.join = w.join;
+    double z = INFINITY, floor = -INFINITY;
     for (std::size_t i = 0; i < w.top.size(); ++i) {
         const double u = coord(w.top[i], along_x);
         const bool inside = high_end ? u < end - 1e-9 : u > end + 1e-9;
-        const bool beside = std::abs(u - end) < kStation - 1e-9;
-        if (beside) z = std::min(z, w.top[i].z);
-        if (inside) kept.push_back(w.top[i]);
+        if (std::abs(u - end) < kStation - 1e-9) z = std::min(z, w.top[i].z), floor = std::max(floor, w.floor[i]);
+        if (inside) kept.top.push_back(w.top[i]), kept.floor.push_back(w.floor[i]);
     }
     Vec3 cut = w.top.front();
     (along_x ? cut.x : cut.y) = end;
     cut.z = z;
-    if (high_end) kept.push_back(cut);
-    else kept.insert(kept.begin(), cut);
-    w.top = std::move(kept);
+    if (high_end) kept.top.push_back(cut), kept.floor.push_back(floor);
+    else kept.top.insert(kept.top.begin(), cut), kept.floor.insert(kept.floor.begin(), floor);
+    w = std::move(kept);
 }
 
 struct RegionWalls {
-    std::vector<CeilingWall> walls;
+    std::vector<Run> walls;
     double length = 0;        // of all walls, mm
     std::size_t pieces = 0;   // separate meanders (islands per layer)
     double height = 0;        // mean top height
@@ -216,7 +255,7 @@ RegionWalls region_walls(const ModelQuery& q, const Region& r, const std::vector
     const int gaps = std::max(0, static_cast<int>(std::ceil((hi_v - lo_v - 2 * edge) / p.ceiling_span - 1e-9)));
     const double spacing = gaps == 0 ? 0 : std::min(p.ceiling_span, (hi_v - lo_v - 2 * inset) / gaps);
     const double u0 = coord(r.box.min, along_x) - p.sampling_distance, u1 = coord(r.box.max, along_x) + p.sampling_distance;
-    std::vector<std::vector<CeilingWall>> by_row;
+    std::vector<std::vector<Run>> by_row;
     std::vector<double> row_v;
     for (int j = 0; j <= gaps; ++j) {
         const double v = 0.5 * (lo_v + hi_v) + (j - 0.5 * gaps) * spacing;
@@ -258,9 +297,9 @@ RegionWalls region_walls(const ModelQuery& q, const Region& r, const std::vector
     std::size_t rows_kept = 0;
     for (std::size_t j = 0; j < by_row.size(); ++j)
         for (std::size_t a = 0; a < by_row[j].size(); ++a) {
-            CeilingWall& w = by_row[j][a];
+            Run& w = by_row[j][a];
             double tallest = 0;
-            for (const auto& t : w.top) tallest = std::max(tallest, t.z);
+            for (std::size_t i = 0; i < w.top.size(); ++i) tallest = std::max(tallest, w.top[i].z - w.floor[i]);
             // Strength: a wall no join braces is a strut one wall thick.
             if (!joined[j][a] && tallest > safe_length(p, p.wall_thickness, 0)) continue;
             out.walls.push_back(std::move(w));
@@ -270,10 +309,37 @@ RegionWalls region_walls(const ModelQuery& q, const Region& r, const std::vector
     std::size_t stations = 0;
     for (const auto& w : out.walls) {
         out.length += horizontal_distance(w.top.front(), w.top.back());
-        for (const auto& t : w.top) height_sum += t.z, ++stations;
+        for (std::size_t i = 0; i < w.top.size(); ++i) height_sum += w.top[i].z - w.floor[i], ++stations;
     }
-    out.height = stations ? height_sum / stations : 0;
+    out.height = stations ? height_sum / stations : 0;  // mean wall height
     out.pieces = rows_kept > joins ? rows_kept - joins : 1;
+    return out;
+}
+
+// A piece this long or longer counts as carrying the ceiling along its whole top; a shorter one
+// at its middle only (a wall's top is judged as a contact along its length where it is long).
+constexpr double kLongPiece = 4.0;
+
+// A run cut into pieces with a flat top and floor: each as long as the ceiling and floor above and
+// below it stay within half a layer, its top the lowest top and its floor the highest floor over
+// it. Neighbouring pieces share the station between them.
+std::vector<CeilingWall> flat_pieces(const Run& r, const Params& p) {
+    std::vector<CeilingWall> out;
+    const double flat = 0.5 * p.layer_height;
+    std::size_t i = 0;
+    while (i + 1 < r.top.size()) {
+        double top_lo = std::min(r.top[i].z, r.top[i + 1].z), top_hi = std::max(r.top[i].z, r.top[i + 1].z);
+        double fl_lo = std::min(r.floor[i], r.floor[i + 1]), fl_hi = std::max(r.floor[i], r.floor[i + 1]);
+        std::size_t k = i + 1;
+        while (k + 1 < r.top.size()) {
+            const double t = r.top[k + 1].z, fl = r.floor[k + 1];
+            if (std::max(top_hi, t) - std::min(top_lo, t) > flat || std::max(fl_hi, fl) - std::min(fl_lo, fl) > flat) break;
+            top_lo = std::min(top_lo, t), top_hi = std::max(top_hi, t), fl_lo = std::min(fl_lo, fl), fl_hi = std::max(fl_hi, fl);
+            ++k;
+        }
+        out.push_back({{r.top[i].x, r.top[i].y, 0}, {r.top[k].x, r.top[k].y, 0}, fl_hi, top_lo, r.join});
+        i = k;
+    }
     return out;
 }
 
@@ -299,15 +365,19 @@ bool walls_carry(const ModelQuery& q, const XyGrid<Vec3>& tops, const Vec3& s, c
     return true;
 }
 
-// Points every quarter millimetre along each wall's top, at the ceiling's height (a gap above).
+// Points every quarter millimetre along each long piece's top, at the ceiling's height (a gap
+// above); a short piece's middle.
 XyGrid<Vec3> wall_tops(const std::vector<CeilingWall>& walls, const Params& p) {
     XyGrid<Vec3> grid(1.0);
-    for (const auto& w : walls)
-        for (std::size_t i = 0; i + 1 < w.top.size(); ++i) {
-            const Vec3 a = w.top[i] + Vec3{0, 0, p.gap}, b = w.top[i + 1] + Vec3{0, 0, p.gap};
-            const int n = std::max(1, static_cast<int>(std::ceil(horizontal_distance(a, b) / 0.25)));
-            for (int k = 0; k <= n; ++k) grid.insert(a + (b - a) * (double(k) / n), a + (b - a) * (double(k) / n));
+    for (const auto& w : walls) {
+        const Vec3 a{w.from.x, w.from.y, w.top + p.gap}, b{w.to.x, w.to.y, w.top + p.gap};
+        if (horizontal_distance(a, b) < kLongPiece) {
+            grid.insert((a + b) * 0.5, (a + b) * 0.5);
+            continue;
         }
+        const int n = std::max(1, static_cast<int>(std::ceil(horizontal_distance(a, b) / 0.25)));
+        for (int k = 0; k <= n; ++k) grid.insert(a + (b - a) * (double(k) / n), a + (b - a) * (double(k) / n));
+    }
     return grid;
 }
 
@@ -323,6 +393,9 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
     const double layers_per_mm = 1 / p.layer_height;
     for (const Region& r : free_regions(q, samples, p)) {
         RegionWalls w = region_walls(q, r, samples, p, overhang_nz);
+        if (std::getenv("CS_DEBUG_CEILINGS") && w.walls.empty())
+            std::fprintf(stderr, "region %zu samples box (%.1f %.1f %.1f)-(%.1f %.1f %.1f): no walls\n", r.samples.size(),
+                         r.box.min.x, r.box.min.y, r.box.min.z, r.box.max.x, r.box.max.y, r.box.max.z);
         if (w.walls.empty()) continue;
         // Per layer: walls print as their pieces' islands plus their length; a tree as its tips'
         // islands, thinning out as they merge below the ceiling.
@@ -336,7 +409,8 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         if (walls_s >= tree_s) continue;
         ++out.regions;
         out.wall_seconds += walls_s, out.tree_seconds += tree_s;
-        for (auto& wall : w.walls) out.walls.push_back(std::move(wall));
+        for (const Run& run : w.walls)
+            for (auto& piece : flat_pieces(run, p)) out.walls.push_back(piece);
     }
     if (out.walls.empty()) {
         out.rest = samples;
@@ -352,27 +426,20 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
 
 Mesh wall_mesh(const CeilingWall& w, double thickness) {
     Mesh m;
-    if (w.top.size() < 2) return m;
-    const Vec3 d = normalized(Vec3{w.top.back().x - w.top.front().x, w.top.back().y - w.top.front().y, 0});
+    const Vec3 d = normalized(Vec3{w.to.x - w.from.x, w.to.y - w.from.y, 0});
     const Vec3 o = Vec3{-d.y, d.x, 0} * (0.5 * thickness);
-    // Cross-section at each station, counter-clockwise seen from ahead (+d): right foot, left foot,
+    // Cross-section at each end, counter-clockwise seen from ahead (+d): right foot, left foot,
     // left top, right top.
-    for (const Vec3& t : w.top) {
-        const Vec3 foot{t.x, t.y, 0};
-        m.vertices.insert(m.vertices.end(), {foot - o, foot + o, t + o, t - o});
+    for (const Vec3& c : {w.from, w.to}) {
+        const Vec3 foot{c.x, c.y, w.bottom}, top{c.x, c.y, w.top};
+        m.vertices.insert(m.vertices.end(), {foot - o, foot + o, top + o, top - o});
     }
-    const auto n = static_cast<std::uint32_t>(w.top.size());
-    m.faces.push_back({0, 2, 1});
-    m.faces.push_back({0, 3, 2});
-    const std::uint32_t e = 4 * (n - 1);
-    m.faces.push_back({e, e + 1, e + 2});
-    m.faces.push_back({e, e + 2, e + 3});
-    for (std::uint32_t s = 0; s + 1 < n; ++s)
-        for (std::uint32_t i = 0; i < 4; ++i) {
-            const std::uint32_t a = 4 * s + i, b = 4 * s + (i + 1) % 4;
-            m.faces.push_back({a, b, b + 4});
-            m.faces.push_back({a, b + 4, a + 4});
-        }
+    m.faces = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}};
+    for (std::uint32_t i = 0; i < 4; ++i) {
+        const std::uint32_t b = (i + 1) % 4;
+        m.faces.push_back({i, b, b + 4});
+        m.faces.push_back({i, b + 4, i + 4});
+    }
     return m;
 }
 

@@ -1,5 +1,5 @@
-// Walls under flat and round ceilings low over the bed (issue #32): where a stretch of overhang
-// falls freely to the bed, thin walls (one line wide) stand in rows under it, `ceiling_span` apart,
+// Walls under flat and round ceilings low over the bed or a level floor of the model (issue #32):
+// where a stretch of overhang falls freely to the bed or to such a floor, thin walls (one line wide) stand in rows under it, `ceiling_span` apart,
 // joined at alternate ends into one meander, so a slicer prints the region as a few long lines per
 // layer instead of one small island per tip. Long straight lines print near full speed; a tip's
 // 1 mm outline never does (acceleration), and every island costs a travel and often a retraction.
@@ -13,8 +13,11 @@
 //     rows      along the region's longer side, at most ceiling_span apart; each row is cut into
 //               walls where the ceiling above it is an overhang of this region all across the
 //               wall's width plus tip_side_clearance (a wall beside it, or a hole, ends a wall)
+//     floors    the bed, or a level face of the model (a gap above it): walls under a roof over
+//               the model stand on it as pillars do
 //     tops      one air gap under the lowest point of the ceiling over the wall's width, at every
-//               station (ceiling_station apart): a round ceiling gets a stepped top that follows it
+//               station (kStation apart); each row is then cut into pieces with a flat top and
+//               floor, so a round ceiling gets a staircase that follows it
 //     joins     a short wall between neighbouring rows at alternate ends (a meander); it braces
 //               the rows it joins. A row left without a join stays only where the strength rule
 //               allows a wall of its width that tall.
@@ -37,11 +40,14 @@ namespace cs {
 
 class ModelQuery;
 
-// A straight wall standing on the bed: its stations run along one horizontal line, each the top
-// of the wall there (one gap under the ceiling). The wall is `thickness` wide across that line.
+// A straight piece of wall, `from` to `to` (horizontal; their z unused), its foot flat at `bottom`
+// (0 on the bed, or a gap above a level face of the model) and its top flat at `top` (a gap under
+// the lowest point of the ceiling over it). Under a round ceiling a row is a staircase of pieces
+// that share the station between them. The wall is `thickness` wide across from-to.
 struct CeilingWall {
-    std::vector<Vec3> top;
-    bool join = false;  // a join between two rows (it ends inside the rows it joins)
+    Vec3 from, to;
+    double bottom = 0, top = 0;
+    bool join = false;  // joins two rows (it ends inside the rows it joins)
 };
 
 struct Ceilings {
@@ -54,8 +60,8 @@ struct Ceilings {
 
 Ceilings support_ceilings(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p);
 
-// Closed, outward-facing mesh of one wall: a four-cornered cross-section (bed to top, `thickness`
-// wide) swept along its stations, with explicit triangle caps at both ends.
+// Closed, outward-facing mesh of one wall: a box, `thickness` wide across from-to, bottom to top,
+// its faces as triangles.
 Mesh wall_mesh(const CeilingWall& w, double thickness);
 
 }  // namespace cs

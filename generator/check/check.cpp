@@ -57,7 +57,7 @@ struct Shell {
     Vec3 gap_at;                   // the point of its top closest to the model above
     bool bottom_on_model = false;  // stands on the model, a gap above it
     // A long top (a wall's, README "check"): every point of it with the model right above is a
-    // contact, not its centre alone.
+    // contact, not its centre alone (find_long_top).
     bool long_top = false;
     std::vector<Vec3> contacts;  // the model points above a long top's contact points
 };
@@ -139,45 +139,39 @@ void find_top_contact(const ModelQuery& q, Shell& s, const Tolerances& t) {
     s.contact = {s.top.x, s.top.y, where.z + gap};
 }
 
-// Faces of a solid that face up more steeply than the critical angle allows a printed surface to
-// lean: a top the model can rest on.
-std::vector<const Triangle*> up_faces(const Mesh& m, double critical_angle) {
-    const double up = std::cos(deg_to_rad(critical_angle));
-    std::vector<const Triangle*> out;
-    for (const auto& f : m.faces) {
-        const Vec3 n = face_normal_unnormalized(m, f);
-        const double l = norm(n);
-        if (l > 0 && n.z >= up * l) out.push_back(&f);
+// A long top (a wall's): the solid's highest ring reaches at least 2 x reach along its longest
+// direction and is at least three times longer than it is wide across it (a strut's or tip's top
+// is a square). Every point of it with the model right above is a contact, not its centre alone;
+// the smallest of their gaps is the solid's air gap.
+void find_long_top(const ModelQuery& q, Shell& s, const Tolerances& t) {
+    std::vector<std::uint32_t> ring;
+    for (std::uint32_t v = 0; v < s.mesh.vertices.size(); ++v)
+        if (std::abs(s.mesh.vertices[v].z - s.zmax) <= 1e-5) ring.push_back(v);
+    Vec3 a, b;
+    double length = 0;
+    for (auto i : ring)
+        for (auto j : ring)
+            if (double d = horizontal_distance(s.mesh.vertices[i], s.mesh.vertices[j]); d > length)
+                length = d, a = s.mesh.vertices[i], b = s.mesh.vertices[j];
+    if (length < 2 * t.reach) return;
+    const Vec3 dir{(b.x - a.x) / length, (b.y - a.y) / length, 0};
+    double across = 0;
+    for (auto i : ring) {
+        const Vec3 d = s.mesh.vertices[i] - a;
+        across = std::max(across, std::abs(d.x * dir.y - d.y * dir.x));
     }
-    return out;
-}
-
-// A top that reaches farther than `reach` across (a wall under a ceiling, not a tip's square) is
-// judged at points over all of it: each with the model a gap (plus slack) above is a contact, the
-// smallest of their gaps is the solid's air gap, and the solid's axis ends at the top's middle.
-void find_long_top(const ModelQuery& q, Shell& s, const Params& p, const Tolerances& t) {
-    const auto faces = up_faces(s.mesh, p.critical_angle);
-    Box3 box{{INFINITY, INFINITY, 0}, {-INFINITY, -INFINITY, 0}};
-    for (const Triangle* f : faces)
-        for (auto v : *f) {
-            const Vec3& x = s.mesh.vertices[v];
-            box.min.x = std::min(box.min.x, x.x), box.min.y = std::min(box.min.y, x.y);
-            box.max.x = std::max(box.max.x, x.x), box.max.y = std::max(box.max.y, x.y);
-        }
-    if (faces.empty() || std::hypot(box.max.x - box.min.x, box.max.y - box.min.y) <= 2 * t.reach) return;
+    if (length < 3 * across) return;
     s.long_top = true;
     s.top_contact = false;
     s.top_gap = INFINITY;
-    Vec3 middle;
-    double area = 0;
-    for (const Triangle* f : faces) {
-        const Vec3 &a = s.mesh.vertices[(*f)[0]], &b = s.mesh.vertices[(*f)[1]], &c = s.mesh.vertices[(*f)[2]];
-        const double fa = 0.5 * norm(cross(b - a, c - a));
-        middle += (a + b + c) * (fa / 3), area += fa;
-        const int n = std::max(1, static_cast<int>(std::ceil(std::max({distance(a, b), distance(b, c), distance(c, a)}) / (0.5 * t.spacing))));
+    for (const auto& f : s.mesh.faces) {
+        const Vec3 &p0 = s.mesh.vertices[f[0]], &p1 = s.mesh.vertices[f[1]], &p2 = s.mesh.vertices[f[2]];
+        if (std::max({std::abs(p0.z - s.zmax), std::abs(p1.z - s.zmax), std::abs(p2.z - s.zmax)}) > 1e-5) continue;
+        const double longest = std::max({distance(p0, p1), distance(p1, p2), distance(p2, p0)});
+        const int n = std::max(1, static_cast<int>(std::ceil(longest / (0.5 * t.spacing))));
         for (int i = 0; i <= n; ++i)
             for (int j = 0; i + j <= n; ++j) {
-                const Vec3 x = a + (b - a) * (double(i) / n) + (c - a) * (double(j) / n);
+                const Vec3 x = p0 + (p1 - p0) * (double(i) / n) + (p2 - p0) * (double(j) / n);
                 const double gap = gap_up(q, x);
                 if (gap > t.gap + t.contact_slack) continue;
                 s.top_contact = true;
@@ -185,7 +179,6 @@ void find_long_top(const ModelQuery& q, Shell& s, const Params& p, const Toleran
                 if (gap < s.top_gap) s.top_gap = gap, s.gap_at = x;
             }
     }
-    if (area > 0) s.top = middle / area;
     if (s.top_contact) s.contact = s.contacts.front();
 }
 
@@ -424,7 +417,7 @@ CheckResult check_supports(const Mesh& model_in, const Mesh& supports, const Par
     r.bodies = shells.size();
     for (auto& s : shells) {
         find_top_contact(q, s, t);
-        find_long_top(q, s, p, t);
+        find_long_top(q, s, t);
         s.bottom_on_model = s.zmin > kOnBed && rests_on_model(q, s, t.gap + (t.gap - t.gap_min));
         check_shape(s, p, o, r);
         check_air_gap(s, t, r);

@@ -183,16 +183,17 @@ std::string tree_data(const Supports& sp) {
     return s;
 }
 
-// The walls under ceilings low over the bed: each a list of stations along one straight line.
+// The walls under low ceilings: each a straight piece with a flat foot and top.
 std::string wall_data(const Supports& sp) {
     Rows walls;
     for (size_t i = 0; i < sp.walls.size(); ++i) {
-        std::string tops;
-        for (size_t k = 0; k < sp.walls[i].top.size(); ++k) tops += (k ? ", " : "") + pt(sp.walls[i].top[k]);
-        walls.push_back({std::to_string(i) + (sp.walls[i].join ? " join" : " row"), "[" + tops + "]"});
+        const CeilingWall& w = sp.walls[i];
+        walls.push_back({std::to_string(i) + (w.join ? " join" : " row"),
+                         fmt::format("[[{}, {}], [{}, {}], {}, {}]", num(w.from.x), num(w.from.y), num(w.to.x), num(w.to.y),
+                                     num(w.bottom), num(w.top))});
     }
-    std::string s = "// Walls under ceilings low over the bed, `wall` thick, standing on the bed: [x, y, z] of the\n"
-                    "// top at each station along one straight line (a gap under the ceiling)\n";
+    std::string s = "// Walls under low ceilings, `wall` thick: [[x, y] from, [x, y] to, z of the foot (0: the bed, else a gap\n"
+                    "// over the model), z of the top (a gap under the ceiling)]\n";
     return s + record_list("cs_walls", walls) + "\n";
 }
 

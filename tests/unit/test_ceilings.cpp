@@ -47,12 +47,14 @@ TEST(Ceilings, ABridgeDeckGetsOneMeanderThatCarriesItsSamples) {
     EXPECT_EQ(joins, rows - 1);  // one meander: every row joined to the next
     EXPECT_GT(w.ceilings.covered, w.samples.samples.size() / 2);
     EXPECT_EQ(w.ceilings.covered + w.ceilings.rest.size(), w.samples.samples.size());
-    for (const auto& wall : w.ceilings.walls)
-        for (const auto& t : wall.top) {
-            EXPECT_NEAR(t.z, 8 - w.p.gap, 1e-6);  // a gap under the deck, all along
+    for (const auto& wall : w.ceilings.walls) {
+        EXPECT_NEAR(wall.top, 8 - w.p.gap, 1e-6);  // a gap under the deck, all along
+        EXPECT_EQ(wall.bottom, 0);                 // on the bed
+        for (const Vec3& t : {wall.from, wall.to}) {
             EXPECT_LT(std::abs(t.x), 8 - tip_side_clearance(w.p) + 1e-9);  // clear of the pillars
             EXPECT_LT(std::abs(t.y), 3);
         }
+    }
 }
 
 TEST(Ceilings, RowsAreAtMostTheSpanApart) {
@@ -61,7 +63,7 @@ TEST(Ceilings, RowsAreAtMostTheSpanApart) {
     Walled w = walled(test::bridge_shape(), p);
     std::vector<double> ys;
     for (const auto& wall : w.ceilings.walls)
-        if (!wall.join) ys.push_back(wall.top.front().y);
+        if (!wall.join) ys.push_back(wall.from.y);
     std::sort(ys.begin(), ys.end());
     ASSERT_GE(ys.size(), 3u);
     for (std::size_t i = 1; i < ys.size(); ++i) EXPECT_LE(ys[i] - ys[i - 1], p.ceiling_span + 1e-9);
@@ -78,25 +80,28 @@ TEST(Ceilings, SpanZeroAndTheColumnsStrategyLeaveEverySampleToTheTree) {
     EXPECT_TRUE(walled(test::bridge_shape(), c).ceilings.walls.empty());
 }
 
-TEST(Ceilings, NoWallStandsWhereTheFallToTheBedIsBlocked) {
+TEST(Ceilings, WallsStandOnTheBedOrALevelFloorOfTheModel) {
     Walled w = walled(test::cantilever_over_box());
-    for (const auto& wall : w.ceilings.walls)
-        for (const auto& t : wall.top) {
-            const bool over_box = t.x > 12 - 0.5 && t.x < 24 + 0.5 && t.y > 2 - 0.5 && t.y < 8 + 0.5;
-            EXPECT_FALSE(over_box) << "a wall at (" << t.x << ", " << t.y << ") stands on the box";
+    for (const auto& wall : w.ceilings.walls) {
+        if (wall.bottom > 0) {
+            EXPECT_NEAR(wall.bottom, 5 + w.p.gap, 1e-6);  // on the box's top, a gap above it
+            continue;
         }
+        for (const Vec3& t : {wall.from, wall.to}) {
+            const bool over_box = t.x > 12 - 0.5 && t.x < 24 + 0.5 && t.y > 2 - 0.5 && t.y < 8 + 0.5;
+            EXPECT_FALSE(over_box) << "a wall on the bed at (" << t.x << ", " << t.y << ") stands in the box";
+        }
+    }
 }
 
 TEST(Ceilings, WallMeshesAreClosedAndFaceOutward) {
-    CeilingWall wall{{{0, 0, 5}, {0.5, 0, 5.2}, {1, 0, 5.4}, {1.5, 0, 5.1}}};
+    CeilingWall wall{{0, 0, 0}, {1.5, 0, 0}, 0, 5};
     Mesh m = wall_mesh(wall, 0.5);
     EXPECT_TRUE(is_closed_and_consistent(m));
-    EXPECT_GT(signed_volume(m), 0);
-    // The volume of a wall 0.5 thick under a piecewise-linear top.
-    EXPECT_NEAR(signed_volume(m), 0.5 * 0.5 * ((5 + 5.2) / 2 + (5.2 + 5.4) / 2 + (5.4 + 5.1) / 2), 1e-9);
-    CeilingWall along_y{{{2, 0, 3}, {2, 2, 3}}};
-    EXPECT_TRUE(is_closed_and_consistent(wall_mesh(along_y, 0.5)));
-    EXPECT_NEAR(signed_volume(wall_mesh(along_y, 0.5)), 0.5 * 2 * 3, 1e-9);
+    EXPECT_NEAR(signed_volume(m), 0.5 * 1.5 * 5, 1e-9);
+    CeilingWall on_model{{2, 0, 0}, {2, 2, 0}, 1.2, 3, true};
+    EXPECT_TRUE(is_closed_and_consistent(wall_mesh(on_model, 0.5)));
+    EXPECT_NEAR(signed_volume(wall_mesh(on_model, 0.5)), 0.5 * 2 * 1.8, 1e-9);
 }
 
 TEST(Ceilings, CheckPassesTheBridgeWithWallsAndTheTreeForTheRest) {
@@ -118,7 +123,7 @@ TEST(CheckWalls, AWallsLongTopIsAContactAlongItsWholeLength) {
     Params p;
     // One wall along x under the deck's middle, a gap below it: points near it along its whole
     // length are covered, points far across are not.
-    CeilingWall wall{{{-7.5, 0, 8 - p.gap}, {7.5, 0, 8 - p.gap}}};
+    CeilingWall wall{{-7.5, 0, 0}, {7.5, 0, 0}, 0, 8 - p.gap};
     CheckResult r = check_supports(model, wall_mesh(wall, p.wall_thickness), p, {});
     EXPECT_EQ(r.contacts, 1u);
     EXPECT_EQ(r.fused_contacts, 0u);
@@ -126,9 +131,9 @@ TEST(CheckWalls, AWallsLongTopIsAContactAlongItsWholeLength) {
     EXPECT_GT(r.covered, 20u);
     EXPECT_FALSE(r.coverage_ok());  // |y| near 3 is beyond reach of one wall at y = 0
     // Lowered by two millimetres it holds nothing up.
-    CeilingWall low{{{-7.5, 0, 6}, {7.5, 0, 6}}};
+    CeilingWall low{{-7.5, 0, 0}, {7.5, 0, 0}, 0, 6};
     EXPECT_EQ(check_supports(model, wall_mesh(low, p.wall_thickness), p, {}).contacts, 0u);
     // Raised into the deck's gap it is fused along its length.
-    CeilingWall fused{{{-7.5, 0, 8 - 0.05}, {7.5, 0, 8 - 0.05}}};
+    CeilingWall fused{{-7.5, 0, 0}, {7.5, 0, 0}, 0, 8 - 0.05};
     EXPECT_EQ(check_supports(model, wall_mesh(fused, p.wall_thickness), p, {}).fused_contacts, 1u);
 }
