@@ -2,7 +2,10 @@
 """Every route from our supports to a slicer, against the slicers' own supports, in one run and one profile.
 
 usage: bench/handoff.py [--bin build/generator/clever-support] [--models a,b,PATH@80mm,...] [--jobs 2] [--work DIR]
-                        [--out bench/results] [--report-only]
+                        [--out bench/results] [--stem handoff] [--routes k1,k2] [--keep-gcode] [--report-only]
+       bench/handoff.py --validation   the validation parts (bench/validation, never tuned on) and the five
+                                        examples at 80 mm -> <out>/validation.{json,md,svg}
+       bench/handoff.py --tuning       the shared models (the tuning set) -> <out>/tuning.{json,md,svg}
 
 Per model (shared models at their benchmark.json scale, orientation kept):
   generator  clever-support --orient keep (tree) and --strategy columns; `clever-support check` on the tree
@@ -14,12 +17,15 @@ Per model (shared models at their benchmark.json scale, orientation kept):
 Each G-code is parsed by slicers/gcode_stats.py (retractions, travel, islands per layer) and, for the
 routes that print our tree, by slicers/printed_bodies.py (cross-sections of our bodies the slicer left
 out), then deleted.
-Writes <out>/handoff.json (raw + derived), <out>/handoff.md (tables) and <out>/handoff.svg (chart).
+Writes <out>/<stem>.json (raw + derived), <out>/<stem>.md (tables) and <out>/<stem>.svg (chart); the stem is
+handoff unless --stem, --validation or --tuning says otherwise. Each model is reported in its set (tuning:
+the shared models; validation: bench/validation; examples; other), with medians per set.
 See bench/README.md.
 """
 import argparse
 import concurrent.futures as cf
 import datetime
+import gzip
 import json
 import math
 import os
@@ -33,6 +39,8 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 SHARED = os.path.normpath(os.path.join(ROOT, "..", "shared", "models"))
+VALIDATION = os.path.join(HERE, "validation")
+EXAMPLES = os.path.join(ROOT, "examples", "models")
 SLICE_PY = os.path.join(HERE, "slicers", "slice.py")
 sys.path.insert(0, os.path.join(HERE, "slicers"))
 sys.dont_write_bytecode = True
@@ -41,6 +49,14 @@ import printed_bodies  # noqa: E402
 import slice as slice_stl  # noqa: E402
 
 DEFAULT_MODELS = ["u_overhang", "extruder_idler", "rocker_arm", "armadillo", "beast", "nefertiti"]
+# The tuning set of --tuning: every shared benchmark model but menger_sponge3, whose Cura tree slice alone
+# takes 5-8 min and whose columns baseline does not slice within the timeout (README, run times).
+TUNING_SKIP = {"menger_sponge3"}
+# Sets a model is reported in, in this order.
+SETS = [("tuning", "Tuning set (shared models: the generator is tuned on these)"),
+        ("validation", "Validation set (bench/validation: never tuned on)"),
+        ("examples", "Examples (examples/models at 80 mm)"),
+        ("other", "Other models")]
 
 # Targets of issue 11 (reported against, never tuned to).
 TARGET_TIME = 0.8      # support time ours / the better baseline
@@ -163,6 +179,10 @@ def slice_route(args, key, name, tree, columns, work):
     out = {k: res[k] for k in ("grams", "print_time_s", "filament_mm3", "slice_seconds")}
     out["cpu_s"] = cpu
     out["gcode"] = gcode_stats.parse(os.path.join(out_dir, "out.gcode"))
+    if args.keep_gcode and os.path.exists(os.path.join(out_dir, "out.gcode")):
+        with open(os.path.join(out_dir, "out.gcode"), "rb") as src, gzip.open(os.path.join(out_dir, "out.gcode.gz"),
+                                                                            "wb", compresslevel=6) as dst:
+            shutil.copyfileobj(src, dst)
     if key in PRINTED_BODIES_ROUTES:
         stem = os.path.join(tree["dir"], name)
         out["printed_bodies"] = printed_bodies.measure(os.path.join(out_dir, "out.gcode"), stem + ".supports.stl",
@@ -272,7 +292,7 @@ def report_md(data):
     L = ["# Handing our supports to the slicers: every route, one run, one profile\n",
          f"_Run {st['date']} on {st['nproc']} cores (load average at start {st['load']}), git commit "
          f"`{st['commit']}`, {st['jobs']} slices at a time; CPU total {st.get('cpu_total_s', 0):.0f} s "
-         f"(generator + slicers)._\n",
+         f"(generator + slicers), wall {st.get('wall_total_s', 0) / 60:.0f} min._\n",
          "Profile: bench/slicers/profile.json (both slicers). Models: shared models at their benchmark.json scale "
          "(others at the scale their row gives), orientation kept. *Support* numbers are the route minus the bare model sliced in the same slicer "
          "and run: grams, minutes, retractions, travel (m). *Of them support→support*: retractions on a travel from one "
@@ -308,19 +328,29 @@ def report_md(data):
                 if ROUTES[key][0] == slicer and "error" in r:
                     L.append(f"| {name} | {key} | failed: {r['error'][-200:].replace(chr(10), ' ')} ||||||||| |")
     L.append("\n## Against the targets (ratios of support-only numbers, same slicer, same run)\n")
-    L.append("| model | coverage | " + " | ".join(k for k, _, _ in TARGETS) + " |")
-    L.append("|---|---:|" + "---:|" * len(TARGETS))
-    for name, m in data["models"].items():
-        t = m.get("targets", {})
-        cov = m.get("check", {})
-        L.append(f"| {name} | {fmt(cov.get('coverage'), '{:.2%}')}{'' if cov.get('ok') else ' ✗'} | " +
-                 " | ".join(fmt(t.get(k)) for k, _, _ in TARGETS) + " |")
-    s = data["summary"]
-    L.append("| **median** | | " + " | ".join(fmt(s["median"].get(k)) for k, _, _ in TARGETS) + " |")
-    L.append("| **worst** | | " + " | ".join(fmt(s["worst"].get(k)) for k, _, _ in TARGETS) + " |")
-    L.append("| **target** | | " + " | ".join(("≤ " if d == "max" else "≥ ") + f"{v}" for _, v, d in TARGETS) + " |")
-    L.append("| **met on** | | " + " | ".join(f"{s['met'].get(k, 0)}/{s['n'].get(k, 0)}" for k, _, _ in TARGETS)
-             + " |")
+    L.append("Each set has its own medians: the validation set and the examples are never pooled with the tuning "
+             "set.\n")
+    by_set = data.get("summary_by_set") or {"other": data["summary"]}
+    for group, title in SETS:
+        if group not in by_set:
+            continue
+        L.append(f"\n### {title}\n")
+        L.append("| model | coverage | " + " | ".join(k for k, _, _ in TARGETS) + " |")
+        L.append("|---|---:|" + "---:|" * len(TARGETS))
+        for name, m in data["models"].items():
+            if m.get("set", "other") != group and "summary_by_set" in data:
+                continue
+            t = m.get("targets", {})
+            cov = m.get("check", {})
+            L.append(f"| {name} | {fmt(cov.get('coverage'), '{:.2%}')}{'' if cov.get('ok') else ' ✗'} | " +
+                     " | ".join(fmt(t.get(k)) for k, _, _ in TARGETS) + " |")
+        s = by_set[group]
+        L.append("| **median** | | " + " | ".join(fmt(s["median"].get(k)) for k, _, _ in TARGETS) + " |")
+        L.append("| **worst** | | " + " | ".join(fmt(s["worst"].get(k)) for k, _, _ in TARGETS) + " |")
+        L.append("| **target** | | " + " | ".join(("≤ " if d == "max" else "≥ ") + f"{v}" for _, v, d in TARGETS)
+                 + " |")
+        L.append("| **met on** | | " + " | ".join(f"{s['met'].get(k, 0)}/{s['n'].get(k, 0)}" for k, _, _ in TARGETS)
+                 + " |")
     L.append("\n## Generation and files\n")
     L.append("*Speed-up*: Cura tree's CPU overhead (CuraEngine with tree support − without supports, same run) over "
              "our generator's CPU (`clever-support`, every output written). Files: what the generator wrote.\n")
@@ -338,7 +368,8 @@ def report_md(data):
                  f"{mb('.prusa.3mf')} | {mb('.3mf')} | {mb('.supported.stl')} |")
     extra = ["cura_mesh_time_vs_ours_as_model", "prusa_3mf_time_vs_ours_as_model", "cura_mesh_filament_vs_columns_mesh",
              "cura_mesh_dropped_body_layers", "prusa_3mf_dropped_body_layers"]
-    L.append("\nOther ratios (median, worst): " + "; ".join(
+    s = data["summary"]
+    L.append("\nOther ratios over every model (median, worst): " + "; ".join(
         f"{k} {fmt(s['median'].get(k))}, {fmt(s['worst'].get(k))}" for k in extra) + ".\n")
     return "\n".join(L) + "\n"
 
@@ -409,6 +440,16 @@ def write_chart_svg(data, path):
 
 
 def summarize(data):
+    """Medians, worst values and targets met: over every model (`summary`) and per set (`summary_by_set`)."""
+    data["summary"] = summary_of(list(data["models"].values()))
+    data["summary_by_set"] = {}
+    for group, _ in SETS:
+        ms = [m for m in data["models"].values() if m.get("set", "other") == group]
+        if ms:
+            data["summary_by_set"][group] = summary_of(ms)
+
+
+def summary_of(models):
     med, worst, met, n = {}, {}, {}, {}
     keys = [(k, d) for k, _, d in TARGETS] + [("cura_mesh_time_vs_ours_as_model", "max"),
                                                ("prusa_3mf_time_vs_ours_as_model", "max"),
@@ -417,7 +458,7 @@ def summarize(data):
                                                ("prusa_3mf_dropped_body_layers", "max")]
     limits = {k: v for k, v, _ in TARGETS}
     for k, d in keys:
-        vals = [m["targets"][k] for m in data["models"].values() if m.get("targets", {}).get(k) is not None]
+        vals = [m["targets"][k] for m in models if m.get("targets", {}).get(k) is not None]
         if not vals:
             continue
         med[k] = statistics.median(vals)
@@ -425,7 +466,7 @@ def summarize(data):
         if k in limits:
             n[k] = len(vals)
             met[k] = sum((v <= limits[k]) if d == "max" else (v >= limits[k]) for v in vals)
-    data["summary"] = {"median": med, "worst": worst, "met": met, "n": n}
+    return {"median": med, "worst": worst, "met": met, "n": n}
 
 
 def model_entry(spec, bench):
@@ -433,7 +474,7 @@ def model_entry(spec, bench):
     scale; any other STL is given by its path, as PATH (scale 1), PATH@SCALE or PATH@<N>mm (scaled so
     its largest extent is N mm, as a user sizes a model they have not printed before)."""
     if spec in bench:
-        return (spec,) + bench[spec]
+        return (spec,) + bench[spec] + ("tuning",)
     path, _, size = spec.partition("@")
     if not path.lower().endswith(".stl") or not os.path.isfile(path):
         raise ValueError(f"{spec}: neither a shared model ({', '.join(sorted(bench))}) nor an STL file "
@@ -448,7 +489,17 @@ def model_entry(spec, bench):
             scale = float(size)
     except (ValueError, ZeroDivisionError):
         raise ValueError(f"{spec}: the part after @ must be a scale (2.5) or a size in mm (80mm)")
-    return os.path.splitext(os.path.basename(path))[0], os.path.abspath(path), scale
+    apath = os.path.abspath(path)
+    where = os.path.dirname(apath)
+    group = "validation" if where == VALIDATION else "examples" if where == EXAMPLES else "other"
+    return os.path.splitext(os.path.basename(path))[0], apath, scale, group
+
+
+def validation_specs():
+    """The validation parts as they are (written in mm) and the five examples at 80 mm."""
+    parts = sorted(f for f in os.listdir(VALIDATION) if f.endswith(".stl"))
+    examples = sorted(f for f in os.listdir(EXAMPLES) if f.endswith(".stl"))
+    return [os.path.join(VALIDATION, f) for f in parts] + [os.path.join(EXAMPLES, f) + "@80mm" for f in examples]
 
 
 def main():
@@ -461,9 +512,28 @@ def main():
     ap.add_argument("--out", default=os.path.join(HERE, "results"))
     ap.add_argument("--gen-timeout", type=float, default=600)
     ap.add_argument("--slice-timeout", type=float, default=900)
-    ap.add_argument("--report-only", action="store_true", help="redo handoff.md from handoff.json")
+    ap.add_argument("--report-only", action="store_true", help="redo <stem>.md from <stem>.json")
+    ap.add_argument("--stem", help="output file names <out>/<stem>.json/.md/.svg (default handoff)")
+    ap.add_argument("--validation", action="store_true",
+                    help="the validation parts (bench/validation) and the five examples at 80 mm; stem validation")
+    ap.add_argument("--tuning", action="store_true",
+                    help="the shared benchmark models but " + ", ".join(sorted(TUNING_SKIP)) + "; stem tuning")
+    ap.add_argument("--routes", help="only these slice keys (comma-separated; the *_none ones are always sliced)")
+    ap.add_argument("--keep-gcode", action="store_true",
+                    help="keep each G-code gzipped beside its slice (<work>/<model>/slices/<key>/out.gcode.gz)")
     args = ap.parse_args()
-    jpath, mpath = os.path.join(args.out, "handoff.json"), os.path.join(args.out, "handoff.md")
+    stem = args.stem or ("validation" if args.validation else "tuning" if args.tuning else "handoff")
+    jpath, mpath = os.path.join(args.out, stem + ".json"), os.path.join(args.out, stem + ".md")
+    svg = os.path.join(args.out, stem + ".svg")
+    routes = list(ROUTES)
+    if args.routes:
+        want = {k.strip() for k in args.routes.split(",") if k.strip()}
+        unknown = want - set(ROUTES)
+        if unknown:
+            print(f"handoff.py: --routes: unknown {', '.join(sorted(unknown))} (known: {', '.join(ROUTES)})",
+                  file=sys.stderr)
+            return 2
+        routes = [k for k in ROUTES if k in want or k.endswith("_none")]
     if args.report_only:
         data = json.load(open(jpath))
         for m in data["models"].values():
@@ -471,25 +541,35 @@ def main():
                 m["derived"], m["targets"] = derive(m)
         summarize(data)
         open(mpath, "w").write(report_md(data))
-        write_chart_svg(data, os.path.join(args.out, "handoff.svg"))
+        write_chart_svg(data, svg)
         return 0
     bench = {os.path.splitext(m["file"])[0]: (os.path.join(SHARED, m["file"]), float(m["scale"]))
              for m in json.load(open(os.path.join(SHARED, "benchmark.json")))["models"]}
     commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
     data = {"stamp": {"date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC"),
                       "nproc": os.cpu_count(), "load": " ".join(open("/proc/loadavg").read().split()[:3]),
-                      "commit": commit, "jobs": args.jobs, "profile": "bench/slicers/profile.json"},
+                      "commit": commit, "jobs": args.jobs, "profile": "bench/slicers/profile.json",
+                      "routes": routes},
             "models": {}}
     cpu_total = 0.0
     os.makedirs(args.work, exist_ok=True)
-    for spec in [n.strip() for n in args.models.split(",") if n.strip()]:
+    if args.validation:
+        specs = validation_specs()
+    elif args.tuning:
+        specs = [n for n in bench if n not in TUNING_SKIP]
+    else:
+        specs = [n.strip() for n in args.models.split(",") if n.strip()]
+    started = time.time()
+    for spec in specs:
         try:
-            name, path, scale = model_entry(spec, bench)
+            name, path, scale, group = model_entry(spec, bench)
         except ValueError as exc:
             print(f"handoff.py: {exc}", file=sys.stderr)
             return 2
         log(f"{name}: generating (scale {scale})")
-        m = {"scale": scale, "gen": {s: generate(args, name, path, scale, args.work, s) for s in ("tree", "columns")}}
+        strategies = ("tree", "columns") if "cura_columns_mesh" in routes else ("tree",)
+        m = {"set": group, "scale": scale,
+             "gen": {s: generate(args, name, path, scale, args.work, s) for s in strategies}}
         cpu_total += sum(g.get("cpu_s") or 0 for g in m["gen"].values())
         if "error" in m["gen"]["tree"]:
             m["error"] = m["gen"]["tree"]["error"]
@@ -497,8 +577,8 @@ def main():
             continue
         m["check"] = check(args, name, m["gen"]["tree"])
         with cf.ThreadPoolExecutor(args.jobs) as ex:
-            futs = {k: ex.submit(slice_route, args, k, name, m["gen"]["tree"], m["gen"]["columns"], args.work)
-                    for k in ROUTES}
+            futs = {k: ex.submit(slice_route, args, k, name, m["gen"]["tree"], m["gen"].get("columns"), args.work)
+                    for k in routes}
             m["slices"] = {k: f.result() for k, f in futs.items()}
         for k, r in m["slices"].items():
             cpu_total += r.get("cpu_s") or 0
@@ -507,12 +587,13 @@ def main():
         m["derived"], m["targets"] = derive(m)
         data["models"][name] = m
         data["stamp"]["cpu_total_s"] = cpu_total
+        data["stamp"]["wall_total_s"] = time.time() - started
         summarize(data)
         os.makedirs(args.out, exist_ok=True)
         json.dump(data, open(jpath, "w"), indent=1)
         open(mpath, "w").write(report_md(data))
-        write_chart_svg(data, os.path.join(args.out, "handoff.svg"))
-    log(f"done, CPU {cpu_total:.0f} s")
+        write_chart_svg(data, svg)
+    log(f"done, CPU {cpu_total:.0f} s, wall {time.time() - started:.0f} s")
     return 0
 
 

@@ -36,6 +36,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 SHARED = os.path.normpath(os.path.join(ROOT, "..", "shared", "models"))
 EXAMPLES = os.path.join(ROOT, "examples", "models")
+# Mechanical parts the generator is never tuned on (bench/validation/README.md): run with --validation only.
+VALIDATION = os.path.join(HERE, "validation")
 SLICE_PY = os.path.join(HERE, "slicers", "slice.py")
 PY = "/usr/bin/python3" if os.path.exists("/usr/bin/python3") else sys.executable
 
@@ -142,7 +144,11 @@ def model_list(args, notes):
         for f in sorted(os.listdir(EXAMPLES)):
             if f.endswith(".stl"):
                 examples.append((os.path.splitext(f)[0], os.path.join(EXAMPLES, f), 1.0, "examples"))
-    if args.quick:
+    validation = [(os.path.splitext(f)[0], os.path.join(VALIDATION, f), 1.0, "validation")
+                  for f in sorted(os.listdir(VALIDATION)) if f.endswith(".stl")] if os.path.isdir(VALIDATION) else []
+    if args.validation:
+        models = validation
+    elif args.quick:
         models = [m for m in shared if m[0] in QUICK_SHARED] + [m for m in examples if m[0] in QUICK_EXAMPLES]
         for n in QUICK_SHARED:
             if not any(m[0] == n for m in shared):
@@ -151,7 +157,7 @@ def model_list(args, notes):
         models = shared + examples
     if args.models:
         want = [w.strip() for w in args.models.split(",") if w.strip()]
-        every = {m[0]: m for m in shared + examples}
+        every = {m[0]: m for m in shared + examples + validation}
         models = []
         for w in want:
             if w in every:
@@ -845,6 +851,8 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="bridge, u_overhang, extruder_idler, arches; no scaling/orient")
     ap.add_argument("--models", help="comma-separated model names (overrides the set)")
+    ap.add_argument("--validation", action="store_true",
+                    help="only the validation parts (bench/validation/*.stl, scale 1): reported apart from the tuning set")
     ap.add_argument("--out", help="results dir (default bench/results, or bench/results/quick with --quick)")
     ap.add_argument("--work", default=os.path.join(HERE, "work"), help="scratch dir (default bench/work, gitignored)")
     ap.add_argument("--bin", default=os.path.join(ROOT, "build", "generator", "clever-support"))
@@ -864,7 +872,9 @@ def main():
                     help="generator runs longer than this (s) are not repeated (default 120)")
     args = ap.parse_args()
     args.bin = os.path.abspath(args.bin)
-    out = os.path.abspath(args.out or (os.path.join(HERE, "results", "quick") if args.quick else os.path.join(HERE, "results")))
+    out = os.path.abspath(args.out or (os.path.join(HERE, "results", "quick") if args.quick else
+                                       os.path.join(HERE, "results", "validation") if args.validation else
+                                       os.path.join(HERE, "results")))
     os.makedirs(out, exist_ok=True)
     res_path = os.path.join(out, "results.json")
 
@@ -892,8 +902,9 @@ def main():
         print(f"generator not found: {args.bin} (build with scripts/build.sh or pass --bin)", file=sys.stderr)
         return 2
     do_main = not args.no_main
-    do_scaling = (args.scaling or not args.quick) and not args.no_scaling
-    do_orient = (args.orient or not args.quick) and not args.no_orient
+    small = args.quick or args.validation  # the validation run is per model only, like --quick
+    do_scaling = (args.scaling or not small) and not args.no_scaling
+    do_orient = (args.orient or not small) and not args.no_orient
     t_start = time.perf_counter()
     st = stamp(args)
     notes = []
@@ -907,7 +918,7 @@ def main():
     results = {}
     owned = []
     if do_main:
-        results.update(stamp=st, models={}, notes=notes, mode="quick" if args.quick else "full")
+        results.update(stamp=st, models={}, notes=notes, mode="quick" if args.quick else "validation" if args.validation else "full")
         owned += ["stamp", "models", "notes", "mode", "elapsed_s"]
     if do_scaling:
         owned.append("scaling")

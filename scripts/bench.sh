@@ -5,6 +5,7 @@
 #   scripts/bench.sh --quick                 # bridge, u_overhang, extruder_idler, arches (a few minutes)
 #   scripts/bench.sh                         # full: all shared benchmark models + examples, scaling, orientation
 #   scripts/bench.sh --models armadillo,spot --out /tmp/res
+#   scripts/bench.sh --validation            # only the validation parts (bench/validation), per model
 #   scripts/bench.sh --no-micro ...          # skip the Google Benchmark run
 #   scripts/bench.sh --no-build ...          # use build-bench/ as it is
 # Every other argument goes to bench/run_bench.py (see its --help: --scaling, --orient, --no-main,
@@ -12,13 +13,14 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-micro=1 build=1 quick=0 out=""
+micro=1 build=1 quick=0 validation=0 out=""
 pass=()
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --no-micro) micro=0 ;;
     --no-build) build=0 ;;
     --quick) quick=1; pass+=("$1") ;;
+    --validation) validation=1; micro=0; pass+=("$1") ;;  # per model only, reported apart (bench/validation)
     --out) out="$2"; pass+=("$1" "$2"); shift ;;
     --out=*) out="${1#--out=}"; pass+=("$1") ;;
     *) pass+=("$1") ;;
@@ -26,7 +28,9 @@ while [[ $# -gt 0 ]]; do
   shift
 done
 if [[ -z "$out" ]]; then
-  if [[ $quick == 1 ]]; then out=bench/results/quick; else out=bench/results; fi
+  if [[ $quick == 1 ]]; then out=bench/results/quick
+  elif [[ $validation == 1 ]]; then out=bench/results/validation
+  else out=bench/results; fi
 fi
 mkdir -p "$out"
 

@@ -5,13 +5,15 @@
 # Usage: ./export.sh [name ...]      (default: every *.scad in this folder)
 # Env:   OPENSCAD=/path/to/openscad  (default: openscad on PATH;
 #        tested with OpenSCAD 2021.01 from Debian)
+#        EXPORT_DIR=dir              (default: this folder; bench/validation/export.sh uses it)
 #
 # Idempotent: every run overwrites <name>.stl.  CGAL emits the triangles in
 # a run-dependent order, so check_stl.py --canonicalize sorts them; the
 # resulting files are byte-identical from run to run.
 set -eu
 
-cd "$(dirname "$0")"
+here="$(cd "$(dirname "$0")" && pwd)"
+cd "${EXPORT_DIR:-$here}"
 OPENSCAD="${OPENSCAD:-openscad}"
 
 if [ "$#" -eq 0 ]; then
@@ -38,6 +40,6 @@ for src in "$@"; do
     rm -f "$name.log"
     echo "== $name: rendered in $((end - start)) s"
     # canonical triangle order (CGAL's varies run to run), then check
-    python3 check_stl.py --canonicalize "$out" || status=1
+    python3 "$here/check_stl.py" --canonicalize "$out" || status=1
 done
 exit $status

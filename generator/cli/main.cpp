@@ -22,7 +22,7 @@
 #include "edit/edited_scad.hpp"
 #include "mesh/mesh_io.hpp"
 #include "output/outputs.hpp"
-#include "output/render.hpp"
+#include "render/render.hpp"
 #include "pipeline/pipeline.hpp"
 
 #ifndef CS_VERSION

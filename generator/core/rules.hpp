@@ -78,7 +78,7 @@ double contact_tolerance(const Params& p);
 
 // A tip, under an overhang sample (leaf_tip) or standing on the model (contact_tip), is ONE square
 // taper between its strut's end (the strut's width) and the contact (tip_diameter wide), along
-// the straight line that placement tested for clearance (struts/placement.hpp: clear_tip_foot,
+// the straight line that placement tested for clearance (tree/placement.hpp: clear_tip_foot,
 // prism_is_clear). A leaf's tip starts joint_overlap down inside its strut's top. The template's
 // cs_tip and cs_contact_tip build the same solid from the same points.
 struct TipEnds {

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "pipeline/pipeline.hpp"
+#include "job/job.hpp"
 
 namespace cs {
 

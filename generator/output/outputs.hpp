@@ -16,7 +16,8 @@
 #include <utility>
 #include <vector>
 
-#include "pipeline/pipeline.hpp"
+#include "job/job.hpp"
+#include "job/result.hpp"
 
 namespace cs {
 

@@ -16,7 +16,8 @@
 
 #include <string>
 
-#include "pipeline/pipeline.hpp"
+#include "job/job.hpp"
+#include "job/result.hpp"
 
 namespace cs {
 

@@ -15,7 +15,7 @@
 #include "core/sha256.hpp"
 #include "core/param_table.hpp"
 #include "mesh/mesh_io.hpp"
-#include "output/render.hpp"
+#include "render/render.hpp"
 #include "query/model_query.hpp"
 #include "struts/solid_volume.hpp"
 #include "tree/tree.hpp"
@@ -235,8 +235,6 @@ std::vector<Sample> edited_samples(const ModelQuery& model, std::vector<Sample> 
     return samples;
 }
 
-bool is_scad_input(const std::string& path) { return path.size() > 5 && path.substr(path.size() - 5) == ".scad"; }
-
 Mesh load_input(const std::string& path, const std::vector<std::string>& defines) {
     if (!is_scad_input(path)) {
         if (!defines.empty()) throw ParameterError("-D applies to a .scad input only, not " + path);
@@ -350,13 +348,6 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         r.warnings.push_back(std::to_string(r.supports.sized.strength_violations) +
                              " struts are longer than safe even at d_max; raise --d-max");
     return r;
-}
-
-std::vector<double> pose_numbers(const Placement& pl) {
-    std::vector<double> v{pl.scale};
-    for (const auto& row : pl.rotation) v.insert(v.end(), row, row + 3);
-    v.insert(v.end(), {pl.translation.x, pl.translation.y, pl.translation.z});
-    return v;
 }
 
 }  // namespace cs

@@ -9,9 +9,10 @@
 
 #include "core/rules.hpp"
 #include "query/model_query.hpp"
-#include "struts/placement.hpp"
 #include "tree/candidates.hpp"
 #include "tree/clearance.hpp"
+#include "tree/placement.hpp"
+#include "tree/sweep_books.hpp"
 #include "tree/tuning.hpp"
 
 namespace cs {
@@ -21,15 +22,15 @@ namespace {
 // neighbours lie in its own cell or the ring around it.
 double grid_cell(const Params& p) { return std::max(2.0 * p.sampling_distance, 1.0); }
 
-// The sweep keeps the books: the nodes and struts grown so far, which nodes are active, what
-// each carries (estimated width, run length), and who may not join whom again. Where a node may
-// go comes from tree/candidates.hpp, whether it fits from tree/clearance.hpp; the sweep takes the
-// first that fits, or steps down, or undoes and drops.
-class Sweep {
+// The sweep grows the tree top down. Its books (tree/sweep_books.hpp) hold the nodes and struts
+// grown so far and one record per node: whether it is active, what it carries (estimated width,
+// run length), and who may not join whom again. Where a node may go comes from
+// tree/candidates.hpp, whether it fits from tree/clearance.hpp; the sweep takes the first that
+// fits, or steps down, or undoes and drops.
+class Sweep : SweepBooks {
 public:
     Sweep(const ModelQuery& model, const Params& p, GrowOptions options = {})
-        : model_(model), p_(p), options_(options), fan_(p.critical_angle), cx_{model, p, fan_, tree()},
-          active_nodes_(grid_cell(p)) {}
+        : SweepBooks(model, p), options_(options), cx_{model, p, fan_, tree()}, active_nodes_(grid_cell(p)) {}
 
     SupportTree hang_only(const std::vector<Sample>& samples) {
         hang_leaves(samples);
@@ -53,12 +54,12 @@ public:
             auto [z, neg_id] = heap_.top();
             heap_.pop();
             int id = -neg_id;
-            if (!active_[id]) continue;
+            if (!books_[id].active) continue;
             support(id);
         }
-        if (tree()) raise_merges();
+        if (tree()) raise_merges(*this);
         t_.grown_with = options_;
-        std::erase_if(t_.struts, [](const Strut& s) { return s.top < 0; });  // dropped branches
+        t_.struts = struts();
         space_feet();
         count_from_tree();
         return std::move(t_);
@@ -94,45 +95,15 @@ private:
         }
     }
 
-    int add_node(const Vec3& p, NodeKind kind, const Vec3& contact, double width) {
-        Node n;
-        n.p = p, n.kind = kind, n.contact = contact;
-        t_.nodes.push_back(n);
-        width_.push_back(width);
-        active_.push_back(0);
-        in_struts_.emplace_back();
-        run_.push_back(0);
-        retries_.push_back(0);
-        banned_.emplace_back();
-        alone_.push_back(0);
-        failed_bends_.emplace_back();
-        return static_cast<int>(t_.nodes.size()) - 1;
-    }
     void activate(int id) {
-        active_[id] = 1;
-        if (!alone_[id]) active_nodes_.insert(id, t_.nodes[id].p);
+        books_[id].active = true;
+        if (!books_[id].alone) active_nodes_.insert(id, t_.nodes[id].p);
         heap_.push({t_.nodes[id].p.z, -id});
     }
     void retire(int id) {
-        active_[id] = 0;
-        if (!alone_[id]) active_nodes_.remove(id, t_.nodes[id].p);
+        books_[id].active = false;
+        if (!books_[id].alone) active_nodes_.remove(id, t_.nodes[id].p);
     }
-    void connect(int top, int bottom) {
-        in_struts_[bottom].push_back(static_cast<int>(t_.struts.size()));
-        t_.struts.push_back({top, bottom});
-    }
-
-    // Widths a strut from node `from` to `to` will have at its ends (estimates for clearance, by
-    // the struts stage's rules; a run of several struts may come out a little wider).
-    EndWidths widths(int from, const Vec3& to) const {
-        const Vec3& a = t_.nodes[from].p;
-        const double len = distance(a, to), angle = angle_from_vertical_deg(a, to);
-        // A bend continues its run: the strength rule sizes the whole run as one column.
-        return strut_end_widths(p_, width_[from], run_[from] + len, angle, len, angle);
-    }
-    double top_width(int from, const Vec3& to) const { return widths(from, to).top; }
-    double bottom_width(int from, const Vec3& to) const { return widths(from, to).bottom; }
-
     // Each sample's leaf (its tip placed), pillar, or the reason it has neither; run() starts from these.
     void hang_leaves(const std::vector<Sample>& samples) {
         const double tip = p_.gap + p_.tip_length;
@@ -179,37 +150,11 @@ private:
     }
     // The sweep starts from the leaves, paired first if asked.
     void start(const std::vector<int>& leaves) {
-        if (tree() && options_.pair_leaves_first) lean_tips_in_pairs(leaves);
+        if (tree() && options_.pair_leaves_first) lean_tips_in_pairs(*this, leaves);
         for (int leaf : leaves) activate(leaf);
     }
 
-    // GrowOptions::pair_leaves_first: neighbouring leaves at one height, nearest pairs first,
-    // lean their tips towards each other before the sweep starts (leaned_pair).
-    void lean_tips_in_pairs(const std::vector<int>& leaves) {
-        const double reach = 2 * max_tip_slant(p_.tip_length) + leaned_feet_apart();  // leaned_pair's farthest
-        XyGrid<int> grid(std::max(reach, 1.0));
-        for (int v : leaves) grid.insert(t_.nodes[v].p, v);
-        std::vector<std::tuple<double, int, int>> pairs;
-        for (int v : leaves)
-            grid.visit_near(t_.nodes[v].p, 1, [&](int u) {
-                if (u <= v) return;
-                const Vec3 &a = t_.nodes[v].p, &b = t_.nodes[u].p;
-                const double d = horizontal_distance(a, b);
-                if (d <= reach && std::abs(a.z - b.z) <= p_.layer_height) pairs.emplace_back(d, v, u);
-            });
-        std::sort(pairs.begin(), pairs.end());
-        std::vector<char> taken(t_.nodes.size(), 0);
-        for (const auto& [d, v, u] : pairs) {
-            if (taken[v] || taken[u]) continue;
-            auto l = leaned_pair(v, u);
-            if (!l) continue;
-            t_.nodes[v].p = l->first;
-            t_.nodes[u].p = l->second;
-            taken[v] = taken[u] = 1;
-        }
-    }
-
-    // Under a low overhang a pillar, placed by its whole footprint (struts/placement.hpp); where
+    // Under a low overhang a pillar, placed by its whole footprint (tree/placement.hpp); where
     // none fits the print bridges the slot (too low) or the sample is given up (too tight).
     PillarFit hang_pillar(const Vec3& sample) {
         auto placed = fit_pillar(model_, sample, p_);
@@ -230,13 +175,13 @@ private:
     // then holds all of them, in cost order.
     bool take_cheapest_clear(int id, std::vector<Candidate>& cands, double bound) {
         by_cost(cands);
-        if (!tree() || alone_[id]) return take_first_clear(id, cands);
+        if (!tree() || books_[id].alone) return take_first_clear(id, cands);
         std::vector<Candidate> landings = std::move(cands), tried;
         std::optional<Candidate> after;
         bool more = true;
         for (std::size_t batch = kTreeTuning.merge_batch; more; batch *= 2) {
             std::vector<Candidate> now;
-            collect_merges(cx_, active_nodes_, t_.nodes, id, banned_[id], bound, after ? &*after : nullptr, batch, now);
+            collect_merges(cx_, active_nodes_, t_.nodes, id, books_[id].banned, bound, after ? &*after : nullptr, batch, now);
             more = now.size() == batch;
             if (more) after = *std::max_element(now.begin(), now.end(), cost_less);
             // Landings up to the batch's dearest merge go now; dearer ones wait for the next batch.
@@ -256,8 +201,8 @@ private:
     bool take_first_clear(int id, const std::vector<Candidate>& cands) {
         for (const auto& c : cands) {
             if (c.type == Target::Merge && options_.lean_merging_leaves && merge_leaning(id, c)) return true;
-            if (const int e = strut_alongside(id, c); e >= 0) {
-                if (join_strut_alongside(id, e)) return true;
+            if (const int u = strut_alongside(id, c); u >= 0) {
+                if (join_strut_alongside(id, u)) return true;
                 continue;  // two struts in one column would carry both loads at the width of one
             }
             if (c.type == Target::SteepModel || !clear(id, c)) continue;
@@ -265,7 +210,7 @@ private:
                 continue;
             // Joining a node widens it: it must still fit through where it is.
             if (c.type == Target::InCone &&
-                !can_escape(c.point, merged_width(p_, {width_[c.other], bottom_width(id, c.point)})))
+                !can_escape(c.point, merged_width(p_, {books_[c.other].width, bottom_width(id, c.point)})))
                 continue;
             accept(id, c);
             return true;
@@ -277,94 +222,65 @@ private:
     // already ending there? Coming down one line, the two would share faces and corners (not two
     // closed solids but one torn one: a bend straight above a bend, both 20 mm steps, in the
     // Menger sponge with --buildplate-only), and one column would carry two loads at the width of
-    // one. That strut's index, or -1.
+    // one. The top of that strut, or -1.
     int strut_alongside(int id, const Candidate& c) const {
         if (c.type != Target::InCone) return -1;
         const Vec3 &a = t_.nodes[id].p, &b = t_.nodes[c.other].p;
-        for (int e : in_struts_[c.other]) {
-            const Vec3& top = t_.nodes[t_.struts[e].top].p;
+        for (int u : books_[c.other].up) {
+            const Vec3& top = t_.nodes[u].p;
             // The lower of the two tops lies on the other strut's line (within a joint's overlap).
             if (top.z < a.z ? point_segment_distance(top, a, b) < joint_overlap(p_)
                             : point_segment_distance(a, top, b) < joint_overlap(p_))
-                return e;
+                return u;
         }
         return -1;
     }
-    // Node `id` joins strut e, which its own strut would run along, where they meet: straight
+    // Node `id` joins the strut down from `top`, which its own strut would run along, where they meet: straight
     // above the strut's top it joins that top; on the strut (a bend landed on another's column)
     // the strut is split there. The strut below carries both, as wide as the merged load needs,
     // if it still clears the model at that width.
-    bool join_strut_alongside(int id, int e) {
-        if (t_.nodes[t_.struts[e].top].p.z >= t_.nodes[id].p.z) return split_strut_at(id, e);
-        const int top = t_.struts[e].top, below = t_.struts[e].bottom;
-        const Vec3 &a = t_.nodes[id].p, &at = t_.nodes[top].p, &to = t_.nodes[below].p;
+    bool join_strut_alongside(int id, int top) {
+        if (t_.nodes[top].p.z >= t_.nodes[id].p.z) return split_strut_at(id, top);
+        const int below = books_[top].down;
+        const Vec3 &at = t_.nodes[top].p, &to = t_.nodes[below].p;
         if (!clear(id, at)) return false;
-        const double was_width = width_[top], was_run = run_[top];
-        width_[top] = merged_width(p_, {width_[top], bottom_width(id, at)});
-        run_[top] = 0;  // now a branch point: a new run starts here
+        const double was_width = books_[top].width, was_run = books_[top].run;
+        books_[top].width = merged_width(p_, {books_[top].width, bottom_width(id, at)});
+        books_[top].run = 0;  // now a branch point: a new run starts here
         const bool fits = !enters_keep_out(p_, at, to, bottom_width(top, to)) &&
                           strut_is_clear(model_, at, top_width(top, to), to, bottom_width(top, to), p_.model_clearance,
                                          false, joint_overlap(p_)) &&
-                          can_escape(to, merged_width(p_, {width_[below], bottom_width(top, to)}));
+                          can_escape(to, merged_width(p_, {books_[below].width, bottom_width(top, to)}));
         if (!fits) {
-            width_[top] = was_width, run_[top] = was_run;
+            books_[top].width = was_width, books_[top].run = was_run;
             return false;
         }
         retire(id);
         connect(id, top);
-        width_[below] = merged_width(p_, {width_[below], bottom_width(top, to)});
+        books_[below].width = merged_width(p_, {books_[below].width, bottom_width(top, to)});
         ++t_.stats.merges;
         return true;
     }
-    // Node `id` lies on strut e: the strut ends at it, and it carries the strut's load on down to
-    // where the strut went.
-    bool split_strut_at(int id, int e) {
-        const int top = t_.struts[e].top, below = t_.struts[e].bottom;
+    // Node `id` lies on the strut down from `top`: the strut ends at it, and it carries the
+    // strut's load on down to where the strut went.
+    bool split_strut_at(int id, int top) {
+        const int below = books_[top].down;
         const Vec3 &a = t_.nodes[id].p, &to = t_.nodes[below].p;
-        const double was_width = width_[id], was_run = run_[id];
-        width_[id] = merged_width(p_, {width_[id], bottom_width(top, a)});
-        run_[id] = 0;  // a branch point: a new run starts here
-        if (!clear(id, to) || !can_escape(to, merged_width(p_, {width_[below], bottom_width(id, to)}))) {
-            width_[id] = was_width, run_[id] = was_run;
+        const double was_width = books_[id].width, was_run = books_[id].run;
+        books_[id].width = merged_width(p_, {books_[id].width, bottom_width(top, a)});
+        books_[id].run = 0;  // a branch point: a new run starts here
+        if (!clear(id, to) || !can_escape(to, merged_width(p_, {books_[below].width, bottom_width(id, to)}))) {
+            books_[id].width = was_width, books_[id].run = was_run;
             return false;
         }
         retire(id);
-        t_.struts[e].bottom = id;
-        in_struts_[id].push_back(e);
-        std::erase(in_struts_[below], e);
+        books_[top].down = id;  // the same strut, made when it was: it keeps its place in the tree
+        books_[id].up.push_back(top);
+        std::erase(books_[below].up, top);
         connect(id, below);
-        width_[below] = merged_width(p_, {width_[below], bottom_width(id, to)});
+        books_[below].width = merged_width(p_, {books_[below].width, bottom_width(id, to)});
         ++t_.stats.merges;
         return true;
-    }
-
-    // How far a tip of this height may lean: 0.9 of the critical angle, clear_tip_foot's limit.
-    double max_tip_slant(double height) const { return 0.9 * fan_.tan_c * height; }
-    // Leaned tips keep their feet half a strut apart, so the merge below them is a real strut.
-    double leaned_feet_apart() const { return 0.5 * p_.d_min; }
-
-    // Two fresh leaves (nothing joined into them yet) lean their tips towards each other, as far as
-    // a tip may slant (clear_tip_foot's limit) while their feet stay half a strut apart: where
-    // the feet go, or nothing when either tip would not clear the model there.
-    std::optional<std::pair<Vec3, Vec3>> leaned_pair(int u, int v) const {
-        auto fresh_leaf = [&](int w) { return t_.nodes[w].kind == NodeKind::Leaf && in_struts_[w].empty(); };
-        if (!fresh_leaf(u) || !fresh_leaf(v)) return std::nullopt;
-        const Vec3 a = t_.nodes[u].p, b = t_.nodes[v].p;
-        const double keep = leaned_feet_apart();
-        const double d = horizontal_distance(a, b);
-        if (d <= keep) return std::nullopt;
-        // Over its own height: a tip under a slope is shorter than tip_length.
-        auto slant = [&](int w) { return max_tip_slant(t_.nodes[w].tip.z - t_.nodes[w].p.z); };
-        const Vec3 dir = Vec3{b.x - a.x, b.y - a.y, 0} / d;
-        const double shift = std::min({0.5 * (d - keep), slant(u), slant(v)});
-        const Vec3 a2 = a + dir * shift, b2 = b - dir * shift;
-        auto leans = [&](int w, const Vec3& to) {
-            const Vec3& tip = t_.nodes[w].tip;
-            return horizontal_distance(to, tip) <= slant(w) && square_is_clear(model_, to, p_.d_min) &&
-                   prism_is_clear(model_, to, p_.d_min, tip, p_.tip_diameter) && can_escape(to, p_.d_min);
-        };
-        if (!leans(u, a2) || !leans(v, b2)) return std::nullopt;
-        return std::pair{a2, b2};
     }
 
     // Leaves about to merge lean first (GrowOptions::lean_merging_leaves): they meet a layer or two
@@ -383,7 +299,7 @@ private:
         move_node(other, b2);
         const bool fits =
             clear(id, c2) && (c2.type == Target::InCone
-                                  ? can_escape(m, merged_width(p_, {width_[other], bottom_width(id, m)}))
+                                  ? can_escape(m, merged_width(p_, {books_[other].width, bottom_width(id, m)}))
                                   : clear(other, m) && can_escape(m, merged_estimate(id, c2)));
         if (fits) {
             accept(id, c2);
@@ -394,78 +310,13 @@ private:
         return false;
     }
     void move_node(int v, const Vec3& to) {
-        const bool listed = active_[v] && !alone_[v];
+        const bool listed = books_[v].active && !books_[v].alone;
         if (listed) active_nodes_.remove(v, t_.nodes[v].p);
         t_.nodes[v].p = to;
         if (listed) active_nodes_.insert(v, to);
     }
 
-    // After the sweep: where two leaves merge, they lean their tips towards each other and the
-    // merge rises to meet them; a merge below a raised one rises too, to where the cones of its
-    // parents now meet. Under a flat ceiling each leaf's own strut down to its first merge is an
-    // island on every layer, and a slicer pays for each. The tree keeps its shape; a node stays
-    // where it was when anything would not fit.
-    void raise_merges() {
-        std::vector<int> out(t_.nodes.size(), -1), merges;
-        for (int e = 0; e < static_cast<int>(t_.struts.size()); ++e)
-            if (t_.struts[e].top >= 0) out[t_.struts[e].top] = e;
-        for (int m = 0; m < static_cast<int>(t_.nodes.size()); ++m)
-            if (t_.nodes[m].kind == NodeKind::Merge && in_struts_[m].size() == 2 && out[m] >= 0) merges.push_back(m);
-        // Top down, so each merge sees where its parents ended up.
-        std::stable_sort(merges.begin(), merges.end(), [&](int x, int y) { return t_.nodes[x].p.z > t_.nodes[y].p.z; });
-        for (int m : merges) {
-            int u = t_.struts[in_struts_[m][0]].top, v = t_.struts[in_struts_[m][1]].top;
-            if (u < 0 || v < 0) continue;
-            if (t_.nodes[u].p.z < t_.nodes[v].p.z) std::swap(u, v);
-            raise_merge(m, u, v, t_.struts[out[m]].bottom);
-        }
-    }
-    void raise_merge(int m, int hi, int lo, int below) {
-        const Vec3 a = t_.nodes[hi].p, b = t_.nodes[lo].p, old = t_.nodes[m].p;
-        const auto leaned = leaned_pair(hi, lo);
-        const bool leaves = t_.nodes[hi].kind == NodeKind::Leaf && t_.nodes[lo].kind == NodeKind::Leaf;
-        if (leaves && !leaned) return;
-        const Vec3 a2 = leaned ? leaned->first : a, b2 = leaned ? leaned->second : b;
-        const Vec3 m2 = merge_point(a2, b2, fan_.tan_c);
-        if (m2.z <= old.z + 1e-6 || m2 == b2) return;  // it would not rise (beyond rounding)
-        t_.nodes[hi].p = a2, t_.nodes[lo].p = b2, t_.nodes[m].p = m2;
-        const Vec3& to = t_.nodes[below].p;
-        const bool fits = angle_from_vertical_deg(m2, to) <= p_.critical_angle + 1e-9 && clear(hi, m2) &&
-                          clear(lo, m2) && clear(m, to, -1, t_.nodes[below].kind == NodeKind::ModelContact) &&
-                          can_escape(m2, width_[m]);
-        if (!fits) t_.nodes[hi].p = a, t_.nodes[lo].p = b, t_.nodes[m].p = old;
-    }
-
-    bool clear(int from, const Vec3& to, double clearance = -1, bool onto_model = false) const {
-        const double air = clearance < 0 ? p_.model_clearance : clearance;
-        return !enters_keep_out(p_, t_.nodes[from].p, to, bottom_width(from, to)) &&
-               strut_is_clear(model_, t_.nodes[from].p, top_width(from, to), to, bottom_width(from, to), air,
-                              onto_model, joint_overlap(p_)) &&
-               run_stays_clear(from, to, std::min(air, p_.gap));
-    }
-    // A strut on from a bend lengthens the bend's run, and the strength rule widens the whole run
-    // as one column (struts/): the struts above in the run must still clear the model at that
-    // width by the z gap (nearer, they print fused to it).
-    bool run_stays_clear(int from, const Vec3& to, double air) const {
-        if (t_.nodes[from].kind != NodeKind::Chain) return true;
-        const double run = run_[from] + distance(t_.nodes[from].p, to);
-        double angle = angle_from_vertical_deg(t_.nodes[from].p, to);
-        std::vector<int> above;
-        for (int v = from; v >= 0 && t_.nodes[v].kind == NodeKind::Chain && in_struts_[v].size() == 1;) {
-            const int e = in_struts_[v][0];
-            above.push_back(e);
-            v = t_.struts[e].top;
-            angle = std::max(angle, angle_from_vertical_deg(t_.nodes[v].p, t_.nodes[t_.struts[e].bottom].p));
-        }
-        for (int e : above) {
-            const Vec3 &a = t_.nodes[t_.struts[e].top].p, &b = t_.nodes[t_.struts[e].bottom].p;
-            const EndWidths w = strut_end_widths(p_, width_[t_.struts[e].top], run, angle, distance(a, b),
-                                                 angle_from_vertical_deg(a, b));
-            if (!strut_is_clear(model_, a, w.top, b, w.bottom, air, false, joint_overlap(p_))) return false;
-        }
-        return true;
-    }
-    bool can_escape(const Vec3& a, double w) const { return cs::can_escape(model_, p_, fan_, a, w); }
+    using SweepBooks::clear;
     bool clear(int from, const Candidate& c, double clearance = -1) const {
         if (c.type == Target::Model && sweep_meets_boxes(c.point, c.contact, bottom_width(from, c.point), 0, p_.keep_out))
             return false;  // its contact tip would stand in a blocker
@@ -534,25 +385,24 @@ private:
     // Detaches the struts ending at `id` and sends the nodes above back to the sweep, barred from
     // joining `id` again. A leaf stays (thin again) and retries; a merge point or bend is dropped.
     bool undo_joins(int id) {
-        if (in_struts_[id].empty() || retries_[id] >= 2) return false;
-        for (int e : in_struts_[id]) {
-            int parent = t_.struts[e].top;
-            t_.struts[e] = {-1, -1};
-            banned_[parent].push_back(id);
-            if (t_.nodes[id].kind == NodeKind::Chain) failed_bends_[parent].push_back(t_.nodes[id].p);
-            retries_[parent] = std::max(retries_[parent], retries_[id]) + 1;  // strictly more: it ends
+        if (books_[id].up.empty() || books_[id].retries >= 2) return false;
+        for (int parent : books_[id].up) {
+            books_[parent].down = -1;
+            books_[parent].banned.push_back(id);
+            if (t_.nodes[id].kind == NodeKind::Chain) books_[parent].failed_bends.push_back(t_.nodes[id].p);
+            books_[parent].retries = std::max(books_[parent].retries, books_[id].retries) + 1;  // strictly more: it ends
             if (t_.nodes[id].kind != NodeKind::Chain && t_.stats.merges > 0) --t_.stats.merges;
             activate(parent);
         }
-        in_struts_[id].clear();
+        books_[id].up.clear();
         if (t_.nodes[id].kind == NodeKind::Leaf) {
-            width_[id] = p_.d_min;
-            run_[id] = 0;
-            ++retries_[id];
-            if (active_[id]) retire(id);
+            books_[id].width = p_.d_min;
+            books_[id].run = 0;
+            ++books_[id].retries;
+            if (books_[id].active) retire(id);
             activate(id);
         } else {
-            if (active_[id]) retire(id);
+            if (books_[id].active) retire(id);
             if (t_.nodes[id].kind == NodeKind::Chain && t_.stats.steps > 0) --t_.stats.steps;
             t_.nodes[id].kind = NodeKind::Dropped;
         }
@@ -570,13 +420,13 @@ private:
         while (!stack.empty()) {
             int v = stack.back();
             stack.pop_back();
-            if (active_[v]) retire(v);
-            for (int e : in_struts_[v]) {
-                stack.push_back(t_.struts[e].top);
-                t_.struts[e] = {-1, -1};
+            if (books_[v].active) retire(v);
+            for (int u : books_[v].up) {
+                stack.push_back(u);
+                books_[u].down = -1;
             }
-            in_struts_[v].clear();
-            if (t_.nodes[v].kind == NodeKind::Leaf && !alone_[v]) {
+            books_[v].up.clear();
+            if (t_.nodes[v].kind == NodeKind::Leaf && !books_[v].alone) {
                 restart_alone(v);
                 continue;
             }
@@ -587,9 +437,9 @@ private:
         t_.stats.dropped_branches += lost > 0;
     }
     void restart_alone(int leaf) {
-        alone_[leaf] = 1;
-        width_[leaf] = p_.d_min;
-        run_[leaf] = 0;
+        books_[leaf].alone = true;
+        books_[leaf].width = p_.d_min;
+        books_[leaf].run = 0;
         activate(leaf);
     }
 
@@ -601,16 +451,16 @@ private:
         retire(id);
         switch (c.type) {
             case Target::InCone:
-                run_[c.other] = 0;  // now a branch point: a new run starts here
+                books_[c.other].run = 0;  // now a branch point: a new run starts here
                 connect(id, c.other);
-                width_[c.other] = merged_width(p_, {width_[c.other], bottom_width(id, c.point)});
+                books_[c.other].width = merged_width(p_, {books_[c.other].width, bottom_width(id, c.point)});
                 ++t_.stats.merges;
                 break;
             case Target::Merge: {
                 double w = merged_width(p_, {bottom_width(id, c.point), bottom_width(c.other, c.point)});
                 retire(c.other);
                 int s = add_node(c.point, NodeKind::Merge, {}, w);
-                retries_[s] = std::max(retries_[id], retries_[c.other]);
+                books_[s].retries = std::max(books_[id].retries, books_[c.other].retries);
                 connect(id, s);
                 connect(c.other, s);
                 activate(s);
@@ -644,7 +494,7 @@ private:
         for (const auto& d : fan_.dirs) {
             if (passes_failed_bend(id, a, d)) continue;
             auto hit = model_.first_hit(a, d);
-            double margin = 0.5 * width_[id] + p_.model_clearance + p_.d_min;
+            double margin = 0.5 * books_[id].width + p_.model_clearance + p_.d_min;
             double len = hit ? hit->distance - margin / std::max(k.step_min_cos, -d.z) : a.z / -d.z;
             for (len = std::min(len, k.step_reach); len * -d.z > std::max(k.step_min_drop, best_drop); len *= k.step_shrink) {
                 Vec3 to = a + d * len;
@@ -662,9 +512,9 @@ private:
         }
         retire(id);
         int c = add_node(best, NodeKind::Chain, {}, bottom_width(id, best));
-        alone_[c] = alone_[id];
-        run_[c] = run_[id] + distance(a, best);
-        retries_[c] = retries_[id];
+        books_[c].alone = books_[id].alone;
+        books_[c].run = books_[id].run + distance(a, best);
+        books_[c].retries = books_[id].retries;
         connect(id, c);
         activate(c);
         ++t_.stats.steps;
@@ -689,25 +539,13 @@ private:
 
     bool passes_failed_bend(int id, const Vec3& a, const Vec3& d) const {
         const Vec3 far = a + d * kTreeTuning.step_reach;
-        return std::any_of(failed_bends_[id].begin(), failed_bends_[id].end(), [&](const Vec3& f) {
+        return std::any_of(books_[id].failed_bends.begin(), books_[id].failed_bends.end(), [&](const Vec3& f) {
             return point_segment_distance(f, a, far) < kTreeTuning.failed_bend_radius;
         });
     }
 
-    const ModelQuery& model_;
-    const Params& p_;
     GrowOptions options_;
-    ConeFan fan_;
     CandidateContext cx_;
-    SupportTree t_;
-    std::vector<double> width_;  // estimated width at each node, for clearance
-    std::vector<char> active_;
-    std::vector<std::vector<int>> in_struts_;
-    std::vector<double> run_;  // bends: length of the unbranched run above them
-    std::vector<int> retries_;               // how often a node was sent back by undo_joins
-    std::vector<std::vector<int>> banned_;   // nodes a node may not join again
-    std::vector<char> alone_;  // released from a dead end: merges with no one (its bends inherit it)
-    std::vector<std::vector<Vec3>> failed_bends_;  // bends below a node that led to dead ends
     ActiveNodes active_nodes_;
     std::priority_queue<std::pair<double, int>> heap_;  // highest first, then lowest id
 };

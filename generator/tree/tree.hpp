@@ -108,10 +108,11 @@ struct SlicerCost {
 SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>& strut_width, const Params& p);
 
 // Grows the support tree (or the columns baseline, by p.strategy) for the given samples.
-// The sweep (tree.cpp) keeps the books; tree/candidates.hpp finds where a node may go,
-// tree/clearance.hpp whether it fits, tree/tuning.hpp holds the search's constants. After the
-// sweep, merges of two leaves rise to meet the leaves (their tips leaning towards each other),
-// and merges below them follow; the tree keeps its shape.
+// The sweep (tree.cpp) grows it, keeping one record per node (tree/sweep_books.hpp);
+// tree/candidates.hpp finds where a node may go, tree/clearance.hpp whether it fits,
+// tree/tuning.hpp holds the search's constants. After the sweep, merges of two leaves rise to meet
+// the leaves (their tips leaning towards each other), and merges below them follow
+// (tree/raise_merges.cpp); the tree keeps its shape.
 SupportTree grow_tree(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
                       GrowOptions options = {});
 // The same, from the leaves hang_leaves hung for these samples (same model and parameters): the

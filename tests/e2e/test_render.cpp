@@ -10,7 +10,7 @@
 #include "check/check.hpp"
 #include "mesh/mesh_io.hpp"
 #include "core/errors.hpp"
-#include "output/render.hpp"
+#include "render/render.hpp"
 #include "support.hpp"
 
 namespace cs::test {

@@ -13,7 +13,7 @@
 #include "mesh/mesh_io.hpp"
 #include "mesh/repair.hpp"
 #include "core/errors.hpp"
-#include "output/render.hpp"
+#include "render/render.hpp"
 #include "support.hpp"
 #include "../unit/shapes.hpp"
 

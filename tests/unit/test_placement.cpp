@@ -1,4 +1,4 @@
-// struts/placement: where pillars, tip tops and contact tips go (issue #12). Each is placed by its
+// tree/placement: where pillars, tip tops and contact tips go (issue #12). Each is placed by its
 // whole square: the properties asked are those of every corner (air above and below, nothing in
 // the model), on small box models built to break a placement that looks at the axis alone.
 #include <gtest/gtest.h>
@@ -8,7 +8,7 @@
 
 #include "core/params.hpp"
 #include "query/model_query.hpp"
-#include "struts/placement.hpp"
+#include "tree/placement.hpp"
 #include "support.hpp"
 
 using namespace cs;

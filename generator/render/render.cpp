@@ -1,4 +1,4 @@
-#include "output/render.hpp"
+#include "render/render.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>

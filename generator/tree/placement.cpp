@@ -1,4 +1,4 @@
-#include "struts/placement.hpp"
+#include "tree/placement.hpp"
 
 #include <algorithm>
 #include <array>

@@ -1,0 +1,56 @@
+// What one run of the generator computed (pipeline/run_job), as plain structs: the placed model,
+// its overhang samples, the supports of the chosen strategy and the columns baseline. output/
+// writes it; nothing here computes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "ceilings/ceilings.hpp"
+#include "core/geometry.hpp"
+#include "mesh/repair.hpp"
+#include "orient/orient.hpp"
+#include "overhang/overhang.hpp"
+#include "struts/struts.hpp"
+
+namespace cs {
+
+// What one strategy built for the placed model.
+struct Supports {
+    SizedTree sized;
+    std::vector<Strut> grown_struts;  // before omit_struts pruned them: the numbering edits refer to
+    std::vector<Body> bodies;
+    std::vector<CeilingWall> walls;  // under ceilings low over the bed or a floor (ceilings/ceilings.hpp)
+    Mesh mesh;                       // the bodies, then the walls
+    double volume = 0;         // of the support solid, overlaps at joints counted once (solid_volume), mm^3
+    double bodies_volume = 0;  // the bodies' volumes added up, overlaps counted twice, mm^3
+                               // (both add the walls' own; the ends of joins inside rows count twice)
+    double length = 0;  // total strut length (mm)
+};
+
+struct Stage {
+    std::string name;
+    double seconds;
+};
+
+struct Result {
+    std::string name;          // input file name without folder and extension
+    std::string input_sha256;
+    Mesh model;                // placed on the bed
+    RepairReport repair;
+    std::size_t self_intersections = 0;  // pairs, counted up to a limit
+    Placement placement;
+    Orientation orientation;
+    OverhangSamples samples;
+    Supports supports;         // by params.strategy
+    Supports columns;          // the baseline, same samples
+    std::vector<Stage> stages;
+    std::vector<std::string> warnings;
+    std::size_t blocked_samples = 0;  // overhang samples left unsupported by a user's blockers
+};
+
+// The placement as 13 numbers: scale, the rotation's rows, the translation. A user's edits are
+// in the placed model's coordinates: a regrow compares these to know whether they still fit.
+std::vector<double> pose_numbers(const Placement& placement);
+
+}  // namespace cs

@@ -1,0 +1,2 @@
+// A struts source using the tree below it: the right way.
+#include "tree/grow.hpp"
