@@ -55,6 +55,7 @@ constexpr double kLevelFloor = 0.95;
 std::optional<double> floor_under(const ModelQuery& q, const Vec3& x, const Params& p) {
     auto hit = q.first_hit(x - Vec3{0, 0, 1e-3}, {0, 0, -1});
     if (!hit) return 0.0;
+    if (!p.supports_on_model) return std::nullopt;  // --buildplate-only: the bed or nothing
     const Vec3 n = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
     if (!(n.z > kLevelFloor * norm(n))) return std::nullopt;
     const double z = hit->point.z + p.gap;
@@ -343,6 +344,20 @@ std::vector<CeilingWall> flat_pieces(const Run& r, const Params& p) {
     return out;
 }
 
+// Is there an overhang face (seen from below) above x between heights z0 and z1? Rays go up from
+// z0, past the faces of any material they start in or cross (a floor under a low ceiling).
+bool overhang_between(const ModelQuery& q, const Vec3& x, double z0, double z1, double overhang_nz) {
+    Vec3 from{x.x, x.y, z0};
+    for (int crossings = 0; crossings < 8; ++crossings) {
+        auto hit = q.first_hit(from, {0, 0, 1});
+        if (!hit || hit->point.z > z1) return false;
+        const Vec3 n = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
+        if (n.z < overhang_nz * norm(n)) return true;
+        from = hit->point + Vec3{0, 0, 1e-4};
+    }
+    return true;  // a stack of faces: count it as surface to carry (the sample keeps its tip)
+}
+
 // Does every point of the sample's lattice cell on its own stretch of surface lie within reach of
 // a wall's top?
 bool walls_carry(const ModelQuery& q, const XyGrid<Vec3>& tops, const Vec3& s, const Params& p, double overhang_nz) {
@@ -356,11 +371,7 @@ bool walls_carry(const ModelQuery& q, const XyGrid<Vec3>& tops, const Vec3& s, c
         for (int j = 0; j < kCellProbes; ++j) {
             Vec3 x{s.x + sd * (double(i) / (kCellProbes - 1) - 0.5), s.y + sd * (double(j) / (kCellProbes - 1) - 0.5), s.z};
             if (within(x)) continue;
-            auto hit = q.first_hit({x.x, x.y, s.z - 2 * rise}, {0, 0, 1});
-            if (!hit) continue;
-            const Vec3 n = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
-            const bool same_surface = n.z < overhang_nz * norm(n) && std::abs(hit->point.z - s.z) <= 2 * rise;
-            if (same_surface) return false;
+            if (overhang_between(q, x, s.z - 2 * rise, s.z + 2 * rise, overhang_nz)) return false;
         }
     return true;
 }
