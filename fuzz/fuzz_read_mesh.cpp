@@ -1,5 +1,5 @@
-// libFuzzer target for the mesh readers and repair: one source, four binaries (fuzz_stl, fuzz_obj,
-// fuzz_off, fuzz_ply), the format chosen at compile time by CS_FUZZ_FORMAT ("stl", "obj", ...).
+// libFuzzer target for the mesh readers and repair: one source, five binaries (fuzz_stl, fuzz_obj,
+// fuzz_off, fuzz_ply, fuzz_3mf), the format chosen at compile time by CS_FUZZ_FORMAT ("stl", "obj", ...).
 //
 // For any input, parse_mesh must either return a mesh or throw InputError; a parsed mesh then goes
 // through repair_mesh, which must do the same. InputError is the expected outcome for junk and is
@@ -20,7 +20,7 @@
 #include "mesh/repair.hpp"
 
 #ifndef CS_FUZZ_FORMAT
-#error "CS_FUZZ_FORMAT must be defined (\"stl\", \"obj\", \"off\" or \"ply\")"
+#error "CS_FUZZ_FORMAT must be defined (\"stl\", \"obj\", \"off\", \"ply\" or \"3mf\")"
 #endif
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

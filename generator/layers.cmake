@@ -10,7 +10,8 @@
 #        |      +----------+-> render -> core
 #        +-> edit -> job
 #        +-> check -> query -> mesh -> core
-set(CS_LAYERS core mesh query overhang ceilings orient tree struts job render output pipeline check edit cli)
+#        +-> view -> pipeline, check, edit      (`clever-support view`: the page's server)
+set(CS_LAYERS core mesh query overhang ceilings orient tree struts job render output pipeline check edit view cli)
 
 set(CS_LAYER_core "")                   # geometry, parameters and their table, rules, errors
 set(CS_LAYER_mesh core)                 # read/write meshes, repair, place on the bed
@@ -26,4 +27,5 @@ set(CS_LAYER_output job render)         # STL, 3MF, report, parametric .scad
 set(CS_LAYER_pipeline output)           # run_job: one call through every stage
 set(CS_LAYER_check query)               # judges a supported model, independent of the generator
 set(CS_LAYER_edit job)                  # reads an edited .scad back into a Job
-set(CS_LAYER_cli pipeline check edit)   # the command line
+set(CS_LAYER_view pipeline check edit)  # `clever-support view`: serves the page, makes its edits
+set(CS_LAYER_cli pipeline check edit view)  # the command line

@@ -20,6 +20,7 @@ build/generator/clever-support render "$out/$name.scad"
 echo
 echo "Outputs in $out/:"
 ls -1 "$out" | sed 's/^/  /'
-echo "Print: open $out/$name.3mf in Cura (import $out/clever_support.curaprofile once) or"
+echo "Print: open $out/$name.3mf in Cura (import $out/clever_support.curaprofile once, on a Creality printer"
+echo "clever_support_creality.curaprofile) or"
 echo "$out/$name.prusa.3mf in PrusaSlicer, so the struts print as supports (README 'Printing in Cura');"
 echo "or open $out/$name.scad in OpenSCAD to tweak k, d_min, tips, feet."

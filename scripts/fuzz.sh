@@ -2,7 +2,7 @@
 # Fuzzes the mesh readers (+ repair) with libFuzzer: scripts/fuzz.sh [SECONDS_PER_TARGET=60]
 #
 # Configures build-fuzz/ with clang (-DCS_FUZZ=ON -DCS_TESTS=OFF), builds fuzz_stl, fuzz_obj,
-# fuzz_off and fuzz_ply, and runs each for SECONDS_PER_TARGET on a copy of its seed corpus
+# fuzz_off, fuzz_ply and fuzz_3mf, and runs each for SECONDS_PER_TARGET on a copy of its seed corpus
 # tests/data/fuzz/<format>/ (new corpus entries stay in build-fuzz/run/<format>/corpus, out of the
 # repository). Reproducers of crashes, timeouts, out-of-memory and leaks are copied into
 # tests/data/fuzz/<format>/ as <kind>-<sha1> (crash-, timeout-, oom-, leak-), where
@@ -19,7 +19,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
 seconds=${1:-60}
-formats=${FUZZ_FORMATS:-"stl obj off ply"}
+formats=${FUZZ_FORMATS:-"stl obj off ply 3mf"}
 parallel=${FUZZ_JOBS:-1}
 jobs=$(nproc 2>/dev/null || echo 2)
 limits=(-max_len=65536 -timeout=10 -rss_limit_mb=2048)

@@ -41,12 +41,15 @@ prints the flat dict of resolved values as JSON.
 """
 import argparse
 import ast
+import configparser
+import glob
 import json
 import math
 import os
 import re
 import subprocess
 import sys
+import zipfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DEFAULT_PROFILE = os.path.join(HERE, "profile.json")
@@ -60,11 +63,13 @@ FRONTEND_EXTRA = {
 
 
 def default_defs_dir():
+    """$CURA_DEFS_DIR, else the definitions in fetch_cura_defs.sh's Cura 4.13 cache."""
     d = os.environ.get("CURA_DEFS_DIR")
     if d:
         return d
     cache = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return os.path.join(cache, "clever-support", "cura-defs")
+    root = os.environ.get("CURA_413_DIR") or os.path.join(cache, "clever-support", "cura-4.13")
+    return os.path.join(root, "usr", "share", "cura", "resources", "definitions")
 
 
 def ensure_defs(defs_dir=None):
@@ -85,14 +90,26 @@ def ensure_defs(defs_dir=None):
 # Loading definitions (with inheritance)
 # --------------------------------------------------------------------------
 
-def _load_def_file(path, defs_dir):
-    """Load a .def.json and the chain it inherits from; return flat {key: props}."""
+def _def_path(defs_dir, def_id):
+    """A definition file: printers in the definitions folder, extruders in Cura's extruders/ beside it."""
+    for folder in (defs_dir, os.path.join(os.path.dirname(os.path.abspath(defs_dir)), "extruders")):
+        path = os.path.join(folder, def_id + ".def.json")
+        if os.path.isfile(path):
+            return path
+    raise ValueError("no Cura definition %r in %s (or its extruders/ folder)" % (def_id, defs_dir))
+
+
+def _load_def_file(path, defs_dir, metadata=None):
+    """Load a .def.json and the chain it inherits from; return flat {key: props}. `metadata`, if
+    given, collects the chain's metadata (the child's entries win)."""
     with open(path) as f:
         doc = json.load(f)
     flat = {}
     parent = doc.get("inherits")
     if parent:
-        flat = _load_def_file(os.path.join(defs_dir, parent + ".def.json"), defs_dir)
+        flat = _load_def_file(_def_path(defs_dir, parent), defs_dir, metadata)
+    if metadata is not None:
+        metadata.update(doc.get("metadata", {}))
 
     def walk(children):
         for key, props in children.items():
@@ -114,9 +131,18 @@ def _load_def_file(path, defs_dir):
     return flat
 
 
-def load_definitions(defs_dir):
-    printer = _load_def_file(os.path.join(defs_dir, "fdmprinter.def.json"), defs_dir)
-    extruder_raw = _load_def_file(os.path.join(defs_dir, "fdmextruder.def.json"), defs_dir)
+def machine_metadata(defs_dir, machine):
+    """A printer definition's metadata, its parents' included (e.g. machine_extruder_trains)."""
+    md = {}
+    _load_def_file(_def_path(defs_dir, machine), defs_dir, md)
+    return md
+
+
+def load_definitions(defs_dir, machine="fdmprinter"):
+    """The printer's and its first extruder's settings (fdmprinter + fdmextruder by default)."""
+    printer = _load_def_file(_def_path(defs_dir, machine), defs_dir)
+    trains = machine_metadata(defs_dir, machine).get("machine_extruder_trains", {})
+    extruder_raw = _load_def_file(_def_path(defs_dir, trains.get("0", "fdmextruder")), defs_dir)
     # Extruder stack: the extruder definition sits above the global stack.  A
     # property it does not define falls through to fdmprinter; "value" does
     # not fall through: a definition without "value" returns its default_value.
@@ -134,6 +160,64 @@ def load_definitions(defs_dir):
         if key not in extruder:
             extruder[key] = props
     return printer, extruder
+
+
+def read_container(text):
+    """A Cura instance container (.inst.cfg, or the .cfg in a .curaprofile): (metadata, values)."""
+    cp = configparser.ConfigParser(interpolation=None, strict=False)
+    cp.read_string(text)
+    meta = dict(cp["general"]) if cp.has_section("general") else {}
+    meta.update(dict(cp["metadata"]) if cp.has_section("metadata") else {})
+    return meta, dict(cp["values"]) if cp.has_section("values") else {}
+
+
+def read_curaprofile(path):
+    """The global profile of a .curaprofile ZIP (the entry without a position): (metadata, values)."""
+    with zipfile.ZipFile(path) as z:
+        entries = [read_container(z.read(n).decode("utf-8")) for n in z.namelist()]
+    glob = [e for e in entries if "position" not in e[0]]
+    if not glob:
+        raise ValueError("%s holds no global profile" % path)
+    return glob[0]
+
+
+def global_quality(defs_dir, machine, quality_type):
+    """The printer's global quality of that type, as Cura's container tree finds it (MachineNode:
+    the quality_definition's global qualities, fdmprinter's when it has none): (metadata, values)."""
+    md = machine_metadata(defs_dir, machine)
+    has_own = str(md.get("has_machine_quality", "false")).lower() == "true"
+    qdef = md.get("quality_definition", machine) if has_own else "fdmprinter"
+    quality_dir = os.path.join(os.path.dirname(os.path.abspath(defs_dir)), "quality")
+    found = {}
+    for path in glob.glob(os.path.join(quality_dir, "**", "*.inst.cfg"), recursive=True):
+        with open(path, encoding="utf-8") as f:
+            meta, values = read_container(f.read())
+        if meta.get("type") == "quality" and str(meta.get("global_quality")) == "True":
+            found.setdefault(meta.get("definition"), {})[meta.get("quality_type")] = (meta, values)
+    qualities = found.get(qdef) or found.get("fdmprinter", {})
+    if quality_type not in qualities:
+        raise ValueError("printer %s has no quality %r (it has: %s)" % (machine, quality_type, ", ".join(sorted(qualities))))
+    return qualities[quality_type]
+
+
+def container_layers(values, props_of):
+    """Split a container's values as Cura's stack reads them: "=formula" becomes the setting's
+    formula (re-derived), anything else a literal of the setting's type (never re-derived).
+    Returns (formulas, literals)."""
+    formulas, literals = {}, {}
+    for key, text in values.items():
+        text = text.strip()
+        if text.startswith("="):
+            formulas[key] = text[1:]
+            continue
+        kind = (props_of(key) or {}).get("type")
+        if kind == "bool":
+            literals[key] = text in ("True", "true", "1")
+        elif kind in ("float", "int"):
+            literals[key] = float(text) if kind == "float" else int(float(text))
+        else:
+            literals[key] = parse_cli_value(text) if kind not in ("str", "enum") else text
+    return formulas, literals
 
 
 # --------------------------------------------------------------------------
@@ -188,9 +272,15 @@ def _toposort(keys, deps):
 
 
 class Resolver:
-    def __init__(self, defs_dir=None):
+    def __init__(self, defs_dir=None, machine="fdmprinter", formulas=None):
+        """`machine`: a printer definition id; `formulas`: {key: formula} of containers above the
+        definitions (a quality's "=..." values), which replace the definitions' formulas."""
         self.defs_dir = ensure_defs(defs_dir)
-        self.printer, self.extruder = load_definitions(self.defs_dir)
+        self.printer, self.extruder = load_definitions(self.defs_dir, machine)
+        for key, expr in (formulas or {}).items():
+            for view in (self.printer, self.extruder):
+                if key in view:
+                    view[key] = dict(view[key], value=expr)
         self.keys = list(self.printer.keys())
         for k in self.extruder:
             if k not in self.printer:

@@ -83,12 +83,18 @@ def inside(segs, x, y):
 
 
 def extrusions_by_layer(path):
-    """Points along every extruding move, keyed by the layer's top z (rounded to 0.01 mm)."""
+    """Points along every extruding move, keyed by the layer's top z (rounded to 0.01 mm). Moves
+    before the first layer (a printer's start G-code, e.g. the purge line an Ender 3 draws at
+    z = 0.3) do not count: both slicers mark where the layers begin (";LAYER:0" in Cura,
+    ";LAYER_CHANGE" in PrusaSlicer)."""
     layers = collections.defaultdict(list)
     x = y = z = e = 0.0
     relative = False
     with open(path, errors="replace") as f:
+        started = not any(line.startswith((";LAYER:", ";LAYER_CHANGE")) for line in f)
+        f.seek(0)
         for raw in f:
+            started = started or raw.startswith((";LAYER:", ";LAYER_CHANGE"))
             code = raw.split(";", 1)[0].strip()
             if not code:
                 continue
@@ -109,7 +115,7 @@ def extrusions_by_layer(path):
                     ne = float(w["E"])
                     de = ne if relative else ne - e
                     e = e + ne if relative else ne
-                if de > 0:
+                if de > 0 and started:
                     n = max(1, int(math.hypot(nx - x, ny - y) / SAMPLE_MM))
                     pts = layers[round(z, 2)]
                     for i in range(n + 1):

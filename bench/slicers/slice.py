@@ -35,6 +35,8 @@ import subprocess
 import sys
 import tempfile
 import time
+import xml.etree.ElementTree as ET
+import zipfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
@@ -186,6 +188,17 @@ def slice_cura(stl, support, profile, work, timeout, extra=None, support_mesh_st
     overrides = cura_settings.cura_overrides(profile, support)
     overrides.update(extra or {})
     resolver = cura_settings.Resolver()
+    glob, ext = resolved(resolver, overrides, work)
+    # merged.stl is centred on the profile's bed (common.bed_mm); put that centre on Cura's
+    # machine centre.
+    bed = (float(profile["common"]["bed_mm"][0]), float(profile["common"]["bed_mm"][1]))
+    meshes = [(stl, [])] + ([(support_mesh_stl, CURA_SUPPORT_MESH)] if support_mesh_stl else [])
+    density = float(profile["common"]["filament_density_g_cm3"]) * 1e-3  # g/mm3
+    return run_cura_engine(resolver.defs_dir, glob, ext, meshes, bed, density, work, timeout)
+
+
+def resolved(resolver, overrides, work):
+    """The resolved global and extruder-0 settings; kept in cura_settings.json."""
     glob, ext, report = resolver.resolve(overrides)
     if report["unknown_overrides"]:
         raise ValueError("unknown Cura setting(s): %s" % ", ".join(report["unknown_overrides"]))
@@ -194,32 +207,32 @@ def slice_cura(stl, support, profile, work, timeout, extra=None, support_mesh_st
     with open(os.path.join(work, "cura_settings.json"), "w") as f:
         json.dump({"overrides": overrides, "global": glob, "extruder0": ext, "report": report},
                   f, indent=1, sort_keys=True)
-    # merged.stl is centred on the profile's bed (common.bed_mm); put that centre on Cura's
-    # machine centre.
-    bed_x, bed_y = float(profile["common"]["bed_mm"][0]), float(profile["common"]["bed_mm"][1])
+    return glob, ext
+
+
+def run_cura_engine(defs_dir, glob, ext, meshes, bed, density, work, timeout):
+    """CuraEngine on resolved settings; `meshes` [(stl, ["key=value" per-mesh settings])], each STL
+    in bed coordinates (centred at bed/2)."""
+    bed_x, bed_y = bed
     gcode = os.path.join(work, "out.gcode")
     cmd = [CURA_BIN, "slice", "-v",
-           "-j", os.path.join(resolver.defs_dir, "fdmprinter.def.json")]
+           "-j", os.path.join(defs_dir, "fdmprinter.def.json")]
     for k in sorted(glob):
         cmd += ["-s", "%s=%s" % (k, cura_settings.to_engine_string(glob[k]))]
     cmd += ["-e0"]
     for k in sorted(ext):
         cmd += ["-s", "%s=%s" % (k, cura_settings.to_engine_string(ext[k]))]
-    # The merged STL is in bed coordinates (centred at bed_x/2, bed_y/2).  CuraEngine
+    # The STLs are in bed coordinates (centred at bed_x/2, bed_y/2).  CuraEngine
     # (machine_center_is_zero=false) adds (machine_width/2, machine_depth/2) to every
     # mesh, so shift it back with the per-mesh position settings given after -l.
-    def mesh(path, settings=()):
-        out = ["-l", path,
-               "-s", "mesh_position_x=%s" % (-bed_x / 2.0),
-               "-s", "mesh_position_y=%s" % (-bed_y / 2.0),
-               "-s", "mesh_position_z=0",
-               "-s", "center_object=False"]
+    for path, settings in meshes:
+        cmd += ["-l", path,
+                "-s", "mesh_position_x=%s" % (-bed_x / 2.0),
+                "-s", "mesh_position_y=%s" % (-bed_y / 2.0),
+                "-s", "mesh_position_z=0",
+                "-s", "center_object=False"]
         for kv in settings:
-            out += ["-s", kv]
-        return out
-    cmd += mesh(stl)
-    if support_mesh_stl:
-        cmd += mesh(support_mesh_stl, CURA_SUPPORT_MESH)
+            cmd += ["-s", kv]
     cmd += ["-o", gcode]
     write_cmd(os.path.join(work, "cura_cmd.sh"), cmd)
     out, err, wall = run_slicer(cmd, work, os.path.join(work, "cura"), timeout)
@@ -236,7 +249,6 @@ def slice_cura(stl, support, profile, work, timeout, extra=None, support_mesh_st
     # few vertices), CuraEngine drops it, support meshes' first layer with it, and prints every
     # later layer one layer lower. printed_bodies.py needs to know to line the G-code up again.
     m_removed = re.findall(r"Removing (\d+) layers because they are empty", err)
-    density = float(profile["common"]["filament_density_g_cm3"]) * 1e-3  # g/mm3
     return {
         "grams": mm3 * density,
         "print_time_s": float(m_t[-1]),
@@ -245,6 +257,77 @@ def slice_cura(stl, support, profile, work, timeout, extra=None, support_mesh_st
         "slice_seconds": wall,
         "removed_empty_first_layers": int(m_removed[-1]) if m_removed else 0,
     }
+
+
+# --------------------------------------------------------------------------
+# Cura's 3MF on a printer, as a user's Cura slices it
+# --------------------------------------------------------------------------
+
+_NS = {"m": "http://schemas.microsoft.com/3dmanufacturing/core/2015/02"}
+
+
+def _matrix(text):
+    """A 3MF transform (12 numbers, column-major 3x4) as a function on points."""
+    v = [float(x) for x in text.split()] if text else [1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0]
+    return lambda p: tuple(p[0] * v[i] + p[1] * v[3 + i] + p[2] * v[6 + i] + v[9 + i] for i in range(3))
+
+
+def read_cura_3mf(path):
+    """Objects of a 3MF with a mesh, in build (plate) coordinates: [(name, triangles, {setting: value})].
+    The settings are the object's <metadata name="cura:KEY">, as Cura's reader takes them."""
+    with zipfile.ZipFile(path) as z:
+        root = ET.fromstring(z.read("3D/3dmodel.model"))
+    objects = {o.get("id"): o for o in root.iter("{%s}object" % _NS["m"])}
+    out = []
+
+    def emit(obj, transforms):
+        mesh = obj.find("m:mesh", _NS)
+        if mesh is not None:
+            verts = [(float(v.get("x")), float(v.get("y")), float(v.get("z"))) for v in mesh.iter("{%s}vertex" % _NS["m"])]
+            for t in transforms:
+                verts = [t(p) for p in verts]
+            tris = [tuple(verts[int(t.get(k))] for k in ("v1", "v2", "v3")) for t in mesh.iter("{%s}triangle" % _NS["m"])]
+            settings = {m.get("name")[5:]: (m.text or "") for m in obj.iter("{%s}metadata" % _NS["m"])
+                        if (m.get("name") or "").startswith("cura:")}
+            out.append((obj.get("name"), tris, settings))
+        for c in obj.iter("{%s}component" % _NS["m"]):
+            emit(objects[c.get("objectid")], [_matrix(c.get("transform"))] + transforms)
+    for item in root.iter("{%s}item" % _NS["m"]):
+        emit(objects[item.get("objectid")], [_matrix(item.get("transform"))])
+    return out
+
+
+def slice_cura_3mf(path, printer, curaprofile, work, timeout, extra=None, density=1.24e-3):
+    """Our <name>.3mf and a .curaprofile on a Cura printer definition, as the user's Cura gets them:
+    the printer's definition, the global quality of the profile's quality_type, the profile's values
+    above both, and each object's own settings from the 3MF. The objects keep their relative
+    position and are centred on the printer's bed. No profile.json settings."""
+    meta, values = cura_settings.read_curaprofile(curaprofile)
+    defs_dir = cura_settings.ensure_defs()
+    _, quality = cura_settings.global_quality(defs_dir, printer, meta.get("quality_type"))
+    probe = cura_settings.Resolver(defs_dir, printer)
+    formulas, literals = cura_settings.container_layers(quality, probe.printer.get)
+    profile_formulas, profile_literals = cura_settings.container_layers(values, probe.printer.get)
+    formulas.update(profile_formulas)
+    for key in profile_formulas:
+        literals.pop(key, None)
+    literals.update(profile_literals)
+    literals.update(extra or {})
+    resolver = cura_settings.Resolver(defs_dir, printer, formulas)
+    glob, ext = resolved(resolver, literals, work)
+    bed = (float(glob["machine_width"]), float(glob["machine_depth"]))
+    parts = read_cura_3mf(path)
+    groups = []
+    for i, (name, tris, _) in enumerate(parts):
+        raw = os.path.join(work, "object%d.raw.stl" % i)
+        write_stl(raw, tris, name or "object")
+        groups.append(([raw], os.path.join(work, "object%d.stl" % i)))
+    info = place_groups(groups, (bed[0], bed[1], float(glob["machine_height"])))
+    meshes = [(g[1], ["%s=%s" % kv for kv in sorted(p[2].items())]) for g, p in zip(groups, parts)]
+    res = run_cura_engine(resolver.defs_dir, glob, ext, meshes, bed, density, work, timeout)
+    res.update({"printer": printer, "quality_type": meta.get("quality_type"), "bed_mm": list(bed),
+                "model_size_mm": info["size_mm"], "objects": [{"name": p[0], "settings": p[2]} for p in parts]})
+    return res
 
 
 # --------------------------------------------------------------------------
@@ -338,14 +421,27 @@ def slice_prusa(stl, support, profile, work, timeout, extra=None, support_mesh_s
 # --------------------------------------------------------------------------
 
 def slice_models(slicer, support, models, out_dir=None, profile_path=None, scale=1.0, timeout=3600,
-                 overrides=None, support_meshes=None):
+                 overrides=None, support_meshes=None, printer=None, cura_profile=None):
     """Slice; return the result dict.  Raises SliceError / ValueError."""
     support_meshes = list(support_meshes or [])
+    threemf = [m for m in models if m.lower().endswith(".3mf")]
+    if bool(printer) != bool(cura_profile):
+        raise ValueError("--printer and --cura-profile go together (cura, with our <name>.3mf)")
+    if printer:
+        if slicer != "cura" or support != "mesh" or len(models) != 1 or not threemf or support_meshes or scale != 1.0:
+            raise ValueError("--printer slices one Cura 3MF (our <name>.3mf) with --slicer cura --support mesh, at scale 1")
+        for m in models + [cura_profile]:
+            if not os.path.isfile(m):
+                raise ValueError("no such file: %s" % m)
+        return in_work_dir(out_dir, lambda work: dict(
+            {"slicer": slicer, "support": support, "models": [os.path.abspath(models[0])],
+             "cura_profile": os.path.abspath(cura_profile), "overrides": dict(overrides or {}),
+             "out_dir": work if out_dir else None},
+            **slice_cura_3mf(models[0], printer, cura_profile, work, timeout, overrides)))
     if (support == "mesh") != bool(support_meshes):
         raise ValueError("--support mesh and --support-mesh FILE go together (cura only)")
-    threemf = [m for m in models if m.lower().endswith(".3mf")]
     if threemf and (slicer != "prusa" or len(models) != 1 or scale != 1.0):
-        raise ValueError("a 3MF is sliced by prusa alone, as the only input, at scale 1")
+        raise ValueError("a 3MF is sliced by prusa alone, as the only input, at scale 1 (or by cura with --printer)")
     if slicer not in SUPPORT_MODES:
         raise ValueError("--slicer must be cura or prusa")
     if support not in SUPPORT_MODES[slicer]:
@@ -355,14 +451,8 @@ def slice_models(slicer, support, models, out_dir=None, profile_path=None, scale
             raise ValueError("no such file: %s" % m)
     profile = cura_settings.load_profile(profile_path)
     bed = profile["common"]["bed_mm"]
-    tmp = None
-    if out_dir:
-        work = os.path.abspath(out_dir)
-        os.makedirs(work, exist_ok=True)
-    else:
-        tmp = tempfile.mkdtemp(prefix="clever-slice-")
-        work = tmp
-    try:
+
+    def sliced(work):
         stl = os.path.join(work, "merged.stl")
         support_stl = os.path.join(work, "support_mesh.stl") if support_meshes else None
         if threemf:
@@ -380,6 +470,17 @@ def slice_models(slicer, support, models, out_dir=None, profile_path=None, scale
         result["model_size_mm"] = info["size_mm"]
         result["overrides"] = dict(overrides or {})
         result["out_dir"] = work if out_dir else None
+        return result
+    return in_work_dir(out_dir, sliced)
+
+
+def in_work_dir(out_dir, fn):
+    """fn(work) in --out-dir (kept, with result.json) or in a temporary folder (deleted)."""
+    tmp = None if out_dir else tempfile.mkdtemp(prefix="clever-slice-")
+    work = os.path.abspath(out_dir) if out_dir else tmp
+    os.makedirs(work, exist_ok=True)
+    try:
+        result = fn(work)
         if out_dir:
             with open(os.path.join(work, "result.json"), "w") as f:
                 json.dump(result, f, indent=1)
@@ -405,6 +506,9 @@ def main(argv=None):
                     help="extra slicer setting on top of profile.json (repeatable). Cura: a setting key, "
                          "value as JSON (never re-derived); prusa: an .ini key and value")
     ap.add_argument("--timeout", type=float, default=3600, help="slicer time limit in seconds (default 3600)")
+    ap.add_argument("--printer", help="cura, with our <name>.3mf: a Cura machine definition id (e.g. creality_ender3); "
+                    "the printer's definition, the quality of --cura-profile and its values replace profile.json")
+    ap.add_argument("--cura-profile", help="with --printer: the .curaprofile the user imported")
     ap.add_argument("models", nargs="+", help="STL file(s), several merged into one mesh; or one PrusaSlicer 3MF")
     args = ap.parse_args(argv)
     extra = {}
@@ -416,7 +520,7 @@ def main(argv=None):
         extra[key.strip()] = cura_settings.parse_cli_value(val) if args.slicer == "cura" else val
     try:
         res = slice_models(args.slicer, args.support, args.models, args.out_dir, args.profile,
-                           args.scale, args.timeout, extra, args.support_mesh)
+                           args.scale, args.timeout, extra, args.support_mesh, args.printer, args.cura_profile)
     except ValueError as exc:
         print("slice.py: error: %s" % exc, file=sys.stderr)
         return 2

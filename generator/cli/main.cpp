@@ -24,6 +24,7 @@
 #include "output/outputs.hpp"
 #include "render/render.hpp"
 #include "pipeline/pipeline.hpp"
+#include "view/view_cli.hpp"
 
 #ifndef CS_VERSION
 #define CS_VERSION "0.1.0"
@@ -215,6 +216,8 @@ struct CommandLine {
     CheckArgs check;
     RenderOptions render;
     CLI::App *regrow_cmd = nullptr, *check_cmd = nullptr, *render_cmd = nullptr, *presets_cmd = nullptr;
+    ViewArgs view;
+    CLI::App* view_cmd = nullptr;
 };
 
 void add_run_flags(CLI::App& app, RunOptions& o, bool regrow) {
@@ -237,7 +240,7 @@ void add_talk_flags(CLI::App& app, RunOptions& o, bool regrow) {
 }
 
 void add_generate(CLI::App& app, GenerateArgs& g, RunOptions& o) {
-    app.add_option("input", g.input, "Mesh file: .stl (ASCII or binary), .obj, .off, .ply");
+    app.add_option("input", g.input, "Mesh file (" + mesh_formats_text() + "; STL ASCII or binary) or OpenSCAD part (.scad)");
     app.add_option("--out", g.out_dir, "Output directory (default out/<name>)");
     app.add_option("--scale", g.scale, "Scale factor applied first (e.g. 25.4 for inches)");
     app.add_option("--fit", g.fit, "Then scale so the largest side is this many mm");
@@ -299,7 +302,8 @@ CLI::App* add_render(CLI::App& app, RenderOptions& r) {
 void describe_app(CLI::App& app) {
     app.footer("Which file to print (in --out):\n"
                "  Cura:         <name>.3mf        supports marked \"print as support\"; import\n"
-               "                                  clever_support.curaprofile once (README, \"Printing in Cura\")\n"
+               "                                  clever_support.curaprofile once (on an Ender 3/5 or CR-10:\n"
+               "                                  clever_support_creality.curaprofile; README, \"Printing in Cura\")\n"
                "  PrusaSlicer:  <name>.prusa.3mf  supports as a part with support-like settings\n"
                "  Other:        <name>.supported.stl with the slicer's own supports off");
     app.set_version_flag("--version", CS_VERSION);
@@ -314,6 +318,7 @@ void add_commands(CLI::App& app, CommandLine& cl) {
     cl.render_cmd = add_render(app, cl.render);
     cl.presets_cmd = app.add_subcommand("presets", "List the printer presets, their values and where those come from.\n"
                                                    "Your own: --config my.json with {\"preset\": \"generic-0.4\", \"sampling\": 2}");
+    cl.view_cmd = add_view_command(app, cl.view);
 }
 
 int cmd_presets() {
@@ -425,6 +430,7 @@ int run_command(const CommandLine& cl) {
     if (cl.render_cmd->parsed()) return cmd_render(cl.render);
     if (cl.check_cmd->parsed()) return cmd_check(cl.check);
     if (cl.regrow_cmd->parsed()) return cmd_regrow(cl.regrow_file, cl.run);
+    if (cl.view_cmd->parsed()) return run_view_command(cl.view);
     return cmd_generate(cl.generate, cl.run);
 }
 

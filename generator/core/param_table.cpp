@@ -84,6 +84,9 @@ template <class... F>
 struct Overload : F... {
     using F::operator()...;
 };
+// Spelled out for clang 14 (the fuzz build), which does not deduce an aggregate's arguments.
+template <class... F>
+Overload(F...) -> Overload<F...>;
 
 }  // namespace
 

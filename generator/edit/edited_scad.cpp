@@ -130,6 +130,10 @@ EditedScad read_edited_scad(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(path + ": cannot open it. Give the .scad file clever-support wrote.");
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return read_edited_scad_text(text, path);
+}
+
+EditedScad read_edited_scad_text(const std::string& text, const std::string& path) {
     Reader r(parse_scad_values(text, path), path);
 
     EditedScad out;

@@ -19,4 +19,7 @@ struct EditedScad {
 
 EditedScad read_edited_scad(const std::string& path);
 
+// The same from the file's text (e.g. an edit not yet written): errors name `path` and the line.
+EditedScad read_edited_scad_text(const std::string& text, const std::string& path);
+
 }  // namespace cs

@@ -1,6 +1,7 @@
 #include "edit/scad_values.hpp"
 
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
 
 #include "core/errors.hpp"
@@ -26,7 +27,9 @@ public:
             ScadValue v;
             v.line = line;
             skip_space();
+            v.begin = pos_;
             bool plain = value(v.value, &v.item_lines);
+            v.end = pos_;
             skip_space();
             if (!eat(';')) fail("expected ';' after the value of " + name);
             if (!plain) continue;  // refers to other names: not data
@@ -151,5 +154,30 @@ private:
 }  // namespace
 
 ScadValues parse_scad_values(const std::string& text, const std::string& file) { return Parser(text, file).all(); }
+
+std::string scad_literal(const nlohmann::json& value) {
+    if (value.is_null()) return "undef";
+    if (value.is_boolean()) return value.get<bool>() ? "true" : "false";
+    if (value.is_number()) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.10g", value.get<double>());
+        return buf;
+    }
+    if (value.is_string()) return value.dump();  // JSON's escapes are OpenSCAD's: \" \\ \n \t
+    std::string s = "[";
+    for (size_t i = 0; i < value.size(); ++i) s += (i ? ", " : "") + scad_literal(value[i]);
+    return s + "]";
+}
+
+std::string with_scad_value(const std::string& text, const std::string& name, const nlohmann::json& value,
+                            const std::string& file) {
+    ScadValues values = parse_scad_values(text, file);
+    auto it = values.find(name);
+    if (it == values.end())
+        throw InputError(file + ": " + name + " is missing; it is not a .scad file clever-support wrote, or the line "
+                         "assigning " + name + " was removed");
+    const ScadValue& v = it->second;
+    return text.substr(0, v.begin) + scad_literal(value) + text.substr(v.end);
+}
 
 }  // namespace cs

@@ -46,6 +46,7 @@ struct Result {
     Supports columns;          // the baseline, same samples
     std::vector<Stage> stages;
     std::vector<std::string> warnings;
+    std::string input_contents;  // what a container input held (a 3MF's objects and build items), else ""
     std::size_t blocked_samples = 0;  // overhang samples left unsupported by a user's blockers
 };
 

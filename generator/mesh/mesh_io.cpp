@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "core/errors.hpp"
+#include "mesh/read_3mf.hpp"
 
 namespace cs {
 namespace {
@@ -447,35 +448,52 @@ void check_coordinates(const Mesh& m, const std::string& name) {
 
 }  // namespace
 
-Mesh parse_mesh(std::string_view bytes, const std::string& format, const std::string& name, bool allow_empty) {
+const std::vector<std::string>& mesh_formats() {
+    static const std::vector<std::string> formats = {"stl", "obj", "off", "ply", "3mf"};
+    return formats;
+}
+
+std::string mesh_formats_text() {
+    const auto& f = mesh_formats();
+    std::string s;
+    for (size_t i = 0; i < f.size(); ++i) s += (i == 0 ? "." : i + 1 == f.size() ? " or ." : ", .") + f[i];
+    return s;
+}
+
+Mesh parse_mesh(std::string_view bytes, const std::string& format, const std::string& name, bool allow_empty,
+                std::string* contents) {
     Mesh m;
     if (format == "stl") m = parse_stl(bytes, name);
     else if (format == "obj") m = parse_obj(bytes, name);
     else if (format == "off") m = parse_off(bytes, name);
     else if (format == "ply") m = parse_ply(bytes, name);
-    else
-        fail(name, "unknown mesh format '" + format + "'", "Use an .stl, .obj, .off or .ply file.");
+    else if (format == "3mf") {
+        ThreeMfContents what;
+        m = parse_3mf(bytes, name, &what);
+        if (contents) *contents = what.summary();
+    } else
+        fail(name, "unknown mesh format '" + format + "'", "Use an " + mesh_formats_text() + " file.");
     check_coordinates(m, name);
     if (m.faces.empty() && !allow_empty)
         fail(name, "the file contains no triangles", "Check that it is a mesh file and was exported completely.");
     return m;
 }
 
-Mesh read_mesh(const std::string& path, bool allow_empty) {
+Mesh read_mesh(const std::string& path, bool allow_empty, std::string* contents) {
     struct stat st{};
     if (stat(path.c_str(), &st) != 0)
         fail(path, std::string("cannot open: ") + std::strerror(errno), "Check the path.");
-    if (S_ISDIR(st.st_mode)) fail(path, "is a directory, not a mesh file", "Give the path of an .stl, .obj, .off or .ply file.");
+    if (S_ISDIR(st.st_mode)) fail(path, "is a directory, not a mesh file", "Give the path of an " + mesh_formats_text() + " file.");
     std::string ext = extension_of(path);
-    if (ext != "stl" && ext != "obj" && ext != "off" && ext != "ply")
+    if (std::find(mesh_formats().begin(), mesh_formats().end(), ext) == mesh_formats().end())
         fail(path, "unknown format" + (ext.empty() ? std::string(" (no file extension)") : " '." + ext + "'"),
-             "Use an .stl, .obj, .off or .ply file.");
+             "Use an " + mesh_formats_text() + " file.");
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(path, std::string("cannot read: ") + std::strerror(errno), "Check the file's permissions.");
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (in.bad()) fail(path, "read error", "Check the disk and the file.");
     if (bytes.empty()) fail(path, "the file is empty", "Check that the export finished and the file was copied completely.");
-    return parse_mesh(bytes, ext, path, allow_empty);
+    return parse_mesh(bytes, ext, path, allow_empty, contents);
 }
 
 std::string encode_stl(const Mesh& mesh, const std::string& header) {

@@ -128,6 +128,7 @@ std::string report_json(const Result& r, const Job& job) {
                     {"nonmanifold_edges", r.repair.nonmanifold_edges},
                     {"self_intersecting_pairs", r.self_intersections}}}};
     if (is_scad_input(job.input)) j["input"]["openscad_defines"] = job.defines;
+    if (!r.input_contents.empty()) j["input"]["contents"] = r.input_contents;
     j["parameters"] = params_json(job.params);
     if (!job.edits.empty() || job.edits.highlight_strut >= 0) j["edits"] = edits_json(job.edits, r.blocked_samples);
     const auto& pl = r.placement;
@@ -201,7 +202,8 @@ std::vector<OutputFile> output_files(const Result& r, const Job& job, const std:
                          return emit_scad(r.supports, job, meta);
                      }});
     files.push_back({"clever_support.scad", [] { return scad_template_library(); }});
-    files.push_back({"clever_support.curaprofile", [&job] { return encode_cura_profile("clever-support supports", job.params); }});
+    for (const CuraPrinterFamily& family : cura_printer_families())
+        files.push_back({family.file, [&job, &family] { return encode_cura_profile(family, job.params); }});
     return files;
 }
 
@@ -253,6 +255,7 @@ std::string human_summary(const Result& r, const std::string& dir) {
     Vec3 size = bounding_box(r.model).size();
     s += fmt::format("{}: {:.1f} x {:.1f} x {:.1f} mm, orientation {} ({})\n", r.name, size.x, size.y, size.z,
                      to_string(r.orientation.mode), r.orientation.decided_by);
+    if (!r.input_contents.empty()) s += fmt::format("  input       {}\n", r.input_contents);
     s += fmt::format("  overhangs   {:.0f} mm^2, {} samples\n", r.samples.overhang_area, r.samples.samples.size());
     s += fmt::format("  tree        {} struts, {} merges, {} on the bed, {} on the model, {} pillars\n",
                      r.supports.sized.tree.struts.size(), st.merges, st.bed_contacts, st.model_contacts, st.pillars);
@@ -263,8 +266,9 @@ std::string human_summary(const Result& r, const std::string& dir) {
     for (const auto& x : r.stages) total += x.seconds;
     s += fmt::format("  time        {:.2f} s\n", total);
     s += fmt::format("  outputs     {}/{}.supported.stl, .supports.stl, .model.stl, .report.json, .scad\n", dir, r.name);
-    s += fmt::format("  print       Cura: open {0}/{1}.3mf (supports print as support; import {0}/clever_support.curaprofile\n"
-                     "              once, see README \"Printing in Cura\"). PrusaSlicer: open {0}/{1}.prusa.3mf.\n"
+    s += fmt::format("  print       Cura: open {0}/{1}.3mf (supports print as support); import {0}/clever_support.curaprofile\n"
+                     "              once (clever_support_creality.curaprofile on an Ender 3/5 or CR-10), see README\n"
+                     "              \"Printing in Cura\". PrusaSlicer: open {0}/{1}.prusa.3mf.\n"
                      "              Any other slicer: {0}/{1}.supported.stl with its own supports off.\n",
                      dir, r.name);
     return s;

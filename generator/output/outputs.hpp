@@ -4,7 +4,8 @@
 //   <name>.model.stl      the placed (scaled, rotated, on-bed) model
 //   <name>.3mf            for Cura: model + supports grouped, the supports marked "print as support"
 //   <name>.prusa.3mf      for PrusaSlicer: one object, the supports a volume with support-like settings
-//   clever_support.curaprofile  Cura's support settings for the supports of <name>.3mf, to import once
+//   clever_support.curaprofile  Cura's support settings for the supports of <name>.3mf, to import once;
+//   clever_support_creality.curaprofile  the same for Creality's qualities (output/threemf.hpp)
 //   <name>.report.json    parameters, counts, lengths, volumes, the columns baseline, timings
 //   <name>.scad           parametric OpenSCAD (see output/scad.hpp) + clever_support.scad beside it
 // All files are written to temporaries first and renamed into place only when every one of them

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <fmt/format.h>
 #include <iterator>
@@ -209,7 +210,8 @@ std::string encode_zip(std::vector<std::pair<std::string, std::string>> entries)
 }
 
 const Settings& cura_support_mesh_settings() {
-    static const Settings settings = {{"support_mesh", "True"}, {"support_mesh_drop_down", "False"}};
+    static const Settings settings = {
+        {"support_mesh", "True"}, {"support_mesh_drop_down", "False"}, {"minimum_support_area", "0"}};
     return settings;
 }
 
@@ -245,15 +247,42 @@ Settings cura_support_line_settings(const Params& p) {
             {"support_xy_distance", fmt::format("{:.3g}", tip_side_clearance(p))}};
 }
 
-std::string encode_cura_profile(const std::string& profile_name, const Params& p) {
+const std::vector<CuraPrinterFamily>& cura_printer_families() {
+    // Layer heights from Cura 4.13's resources/quality: fdmprinter's *.inst.cfg (its "normal" sets
+    // none: fdmprinter's 0.1 mm default) and creality/base/base_global_*.inst.cfg. creality's
+    // "adaptive" (0.16 mm with adaptive layers) is left out: it is not one layer height.
+    static const std::vector<CuraPrinterFamily> families = {
+        {"clever_support.curaprofile",
+         "Prusa i3 MK3, Ultimaker S3/S5, Custom FFF and most printers without qualities of their own",
+         {{"high", 0.06}, {"normal", 0.1}, {"fast", 0.15}, {"draft", 0.2}, {"verydraft", 0.3}, {"coarse", 0.4},
+          {"extra coarse", 0.6}}},
+        {"clever_support_creality.curaprofile",
+         "Creality Ender 3/5, CR-10 and other printers with Standard/Super/Ultra qualities",
+         {{"ultra", 0.08}, {"super", 0.12}, {"standard", 0.2}, {"low", 0.28}, {"draft", 0.32}}},
+    };
+    return families;
+}
+
+const CuraQuality& cura_quality_for(const CuraPrinterFamily& family, double layer_height) {
+    return *std::min_element(family.qualities.begin(), family.qualities.end(), [&](const auto& a, const auto& b) {
+        return std::abs(a.layer_height - layer_height) < std::abs(b.layer_height - layer_height);
+    });
+}
+
+std::string encode_cura_profile(const CuraPrinterFamily& family, const Params& p) {
     // Cura 4.13's container format: version 4, setting_version 19 (CuraApplication.SettingVersion).
-    // quality_type "normal" is the quality every machine has; the settings apply on top of it.
+    // Its importer renames the profile after the file; the name inside says the same.
+    const std::string name = family.file.substr(0, family.file.rfind('.'));
+    const CuraQuality& quality = cura_quality_for(family, p.layer_height);
     std::string cfg = fmt::format(
         "[general]\nversion = 4\nname = {}\ndefinition = fdmprinter\n\n"
-        "[metadata]\ntype = quality_changes\nquality_type = normal\nsetting_version = 19\n\n[values]\n",
-        profile_name);
+        "[metadata]\ntype = quality_changes\nquality_type = {}\nsetting_version = 19\n\n[values]\n",
+        name, quality.type);
+    // The supports are built for p.layer_height: where the family's nearest quality has another,
+    // the profile keeps ours rather than move the user to that quality's.
+    if (std::abs(quality.layer_height - p.layer_height) > 1e-9) cfg += fmt::format("layer_height = {:.3g}\n", p.layer_height);
     for (const auto& [key, value] : cura_support_line_settings(p)) cfg += key + " = " + value + "\n";
-    return encode_zip({{"clever_support_supports", std::move(cfg)}});
+    return encode_zip({{name, std::move(cfg)}});
 }
 
 std::string encode_3mf_cura(const std::string& name, const std::vector<NamedMesh>& parts) {

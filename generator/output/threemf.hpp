@@ -29,8 +29,12 @@ struct NamedMesh {
     Settings settings;  // slicer settings for this part (keys without any prefix)
 };
 
-// Cura's "Per Model Settings -> Print as support". Read by Cura's 3MF reader as object metadata
-// "cura:<key>"; it keeps only keys the object's setting stack knows.
+// Cura's "Per Model Settings -> Print as support", and no smallest support area. Read by Cura's 3MF
+// reader as object metadata "cura:<key>"; it keeps every key the object's setting stack knows (any
+// printer setting) and sends them to CuraEngine as the mesh's own settings. minimum_support_area is
+// read from the support mesh's own settings (CuraEngine 4.13 support.cpp 695-702, the same in 5.x),
+// so 0 here keeps every strut, tips included, on the printers whose definitions delete support
+// areas under 2 or 5 mm2 (creality_base and about ten other bases), with or without our profile.
 const Settings& cura_support_mesh_settings();
 
 // PrusaSlicer 2.5 per-volume settings that make struts print like its supports: one perimeter a
@@ -47,10 +51,36 @@ Settings prusa_support_volume_settings(const Params& p);
 // does not trim tips our geometry already kept clear. `p` gives that clearance.
 Settings cura_support_line_settings(const Params& p);
 
-// A Cura profile (.curaprofile: a ZIP of one quality_changes .cfg) with cura_support_line_settings,
-// to import once in Cura (Preferences -> Profiles -> Import). Cura 4.13's format; newer Cura
-// versions upgrade it on import.
-std::string encode_cura_profile(const std::string& profile_name, const Params& p);
+// A family of Cura printers that share one set of quality profiles. Cura 4.13 imports a profile
+// only on a printer that has the profile's quality_type (CuraContainerRegistry._configureProfile:
+// "Quality type ... is not compatible"), and choosing the profile switches the printer to that
+// quality, layer height included. So each family gets its own profile file, whose quality_type is
+// the family's quality at the supports' layer height.
+struct CuraQuality {
+    std::string type;     // Cura's quality_type
+    double layer_height;  // mm: that quality's layer_height in Cura 4.13
+};
+struct CuraPrinterFamily {
+    std::string file;                    // the profile's file; Cura names the profile after it
+    std::string printers;                // which printers it is for, in words
+    std::vector<CuraQuality> qualities;  // the family's global qualities
+};
+
+// The families we write a profile for: Cura's generic qualities (fdmprinter: Prusa i3 MK3, Custom
+// FFF, Ultimaker S3/S5 and most printers without their own) and creality_base's (Ender 3/5, CR-10
+// and the bases that copy its quality names). bench/slicers/cura_check.py checks each against
+// Cura 4.13's own definitions and quality lookup.
+const std::vector<CuraPrinterFamily>& cura_printer_families();
+
+// The family's quality whose layer height is nearest `layer_height` (the first of equals).
+// Example: creality at 0.2 mm -> "standard"; generic at 0.2 mm -> "draft" (Cura's 0.2 mm quality).
+const CuraQuality& cura_quality_for(const CuraPrinterFamily& family, double layer_height);
+
+// A Cura profile (.curaprofile: a ZIP of one quality_changes .cfg) for one printer family, to
+// import once in Cura (Preferences -> Profiles -> Import): cura_support_line_settings on top of the
+// family's quality at p.layer_height, and layer_height itself only where that quality's differs.
+// Cura 4.13's format; newer Cura versions upgrade it on import.
+std::string encode_cura_profile(const CuraPrinterFamily& family, const Params& p);
 
 // Cura form: an object per part, grouped as components of one build item (so they keep their
 // relative position); each part's settings become <metadatagroup> "cura:" metadata.

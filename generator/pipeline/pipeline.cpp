@@ -235,10 +235,10 @@ std::vector<Sample> edited_samples(const ModelQuery& model, std::vector<Sample> 
     return samples;
 }
 
-Mesh load_input(const std::string& path, const std::vector<std::string>& defines) {
+Mesh load_input(const std::string& path, const std::vector<std::string>& defines, std::string* contents) {
     if (!is_scad_input(path)) {
         if (!defines.empty()) throw ParameterError("-D applies to a .scad input only, not " + path);
-        return read_mesh(path);
+        return read_mesh(path, false, contents);
     }
     if (!std::ifstream(path)) throw InputError(path + ": cannot open it. Check the path.");
     char tmpl[] = "/tmp/clever-support-part-XXXXXX";
@@ -278,7 +278,7 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     Stopwatch sw(r.stages);
     r.name = stem(job.input);
 
-    Mesh raw = sw.time("load", progress, [&] { return load_input(job.input, job.defines); });
+    Mesh raw = sw.time("load", progress, [&] { return load_input(job.input, job.defines, &r.input_contents); });
     r.input_sha256 = file_sha256(job.input);
     Mesh repaired = sw.time("repair", progress, [&] { return repair_mesh(raw, input, r.repair); });
     raw = Mesh();  // each stage's input is released once the next has its own: big scans need the room

@@ -54,6 +54,11 @@ std::vector<Sample> edited_samples(const ModelQuery& model, std::vector<Sample> 
 
 // The mesh of an input file; a .scad part is rendered by OpenSCAD first (with `defines`).
 // Throws InputError with OpenSCAD's message when the part does not render.
-Mesh load_input(const std::string& path, const std::vector<std::string>& defines);
+// `contents` (when given) gets what a container input held (read_mesh).
+Mesh load_input(const std::string& path, const std::vector<std::string>& defines, std::string* contents = nullptr);
+
+// The placement as 13 numbers: scale, the rotation's rows, the translation. A user's edits are
+// in the placed model's coordinates: a regrow compares these to know whether they still fit.
+std::vector<double> pose_numbers(const Placement& placement);
 
 }  // namespace cs

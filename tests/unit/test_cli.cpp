@@ -42,7 +42,7 @@ std::set<std::string> entries(const std::string& dir) {
 std::set<std::string> six_outputs(const std::string& stem) {  // and the 3MFs since issues 7 and 11
     return {stem + ".supported.stl", stem + ".supports.stl", stem + ".model.stl", stem + ".report.json",
             stem + ".scad",          "clever_support.scad", stem + ".3mf",         stem + ".prusa.3mf",
-            "clever_support.curaprofile"};
+            "clever_support.curaprofile", "clever_support_creality.curaprofile"};
 }
 
 std::string stem_of(const std::string& file) { return fs::path(file).stem().string(); }

@@ -26,7 +26,7 @@ using namespace cs;
 
 namespace {
 
-const std::vector<std::string> kFormats = {"stl", "obj", "off", "ply"};
+const std::vector<std::string> kFormats = {"stl", "obj", "off", "ply", "3mf"};
 
 std::string corpus_dir() { return cs::test::source_dir() + "/tests/data/fuzz"; }
 

@@ -416,7 +416,7 @@ TEST(MeshIoErrors, UnknownExtension) {
     write_bytes(dir / "noext", encode_stl(test_box(), "x"));
     expect_input_error([&] { read_mesh(dir / "box.xyz"); }, {dir / "box.xyz", "unknown format '.xyz'"});
     expect_input_error([&] { read_mesh(dir / "noext"); }, {dir / "noext", "no file extension"});
-    expect_input_error([&] { parse_mesh("abc", "3mf", "x.3mf"); }, {"x.3mf", "unknown mesh format '3mf'"});
+    expect_input_error([&] { parse_mesh("abc", "amf", "x.amf"); }, {"x.amf", "unknown mesh format 'amf'"});
 }
 
 TEST(MeshIoErrors, DirectoryAsInput) {

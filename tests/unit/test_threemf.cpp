@@ -8,6 +8,7 @@
 #include <fstream>
 #include <map>
 #include <regex>
+#include <set>
 #include <zip.h>
 
 #include <fmt/format.h>
@@ -133,11 +134,13 @@ TEST(ThreeMF, CuraGetsAGroupWhoseSupportsObjectIsMarkedPrintAsSupport) {
     // footprint (x from 0, y from -5) is moved to start 10 mm from that corner.
     EXPECT_EQ(attribute(items[0], "transform"), "1 0 0 0 1 0 0 0 1 10.000000 15.000000 0");
     EXPECT_EQ(count(group, "<mesh>"), 0);
-    // The model object has no settings; the supports object has exactly Cura's "Print as support".
+    // The model object has no settings; the supports object has Cura's "Print as support" and keeps
+    // support areas of any size (Ender 3s and others delete those under 2 mm2, tips with them).
     EXPECT_TRUE(cura_metadata(objects[0]).empty());
     auto md = cura_metadata(objects[1]);
     EXPECT_EQ(md, (std::map<std::string, std::string>{{"cura:support_mesh", "True"},
-                                                      {"cura:support_mesh_drop_down", "False"}}));
+                                                      {"cura:support_mesh_drop_down", "False"},
+                                                      {"cura:minimum_support_area", "0"}}));
     // Metadata precedes the mesh, as the 3MF core schema orders an object's children.
     EXPECT_LT(objects[1].find("<metadatagroup>"), objects[1].find("<mesh>"));
     // Not the core spec's type="support": Cura ignores it and PrusaSlicer skips such objects.
@@ -209,16 +212,56 @@ TEST(ThreeMF, EntriesAreDeflatedAndTheSameInputGivesTheSameBytes) {
     EXPECT_EQ(encode_3mf_prusa("tower", parts), z);
 }
 
+const CuraPrinterFamily& family(const std::string& file) {
+    for (const auto& f : cura_printer_families())
+        if (f.file == file) return f;
+    throw std::runtime_error("no Cura printer family " + file);
+}
+
 TEST(ThreeMF, CuraProfileHoldsTheSupportLineSettingsInCurasFormat) {
-    auto files = unzip(encode_cura_profile("clever-support supports", Params{}));
+    auto files = unzip(encode_cura_profile(family("clever_support.curaprofile"), Params{}));
     ASSERT_EQ(files.size(), 1u);
     const std::string& cfg = files.begin()->second;
-    for (const char* line : {"[general]\nversion = 4\n", "name = clever-support supports\n", "definition = fdmprinter\n",
-                             "[metadata]\ntype = quality_changes\n", "quality_type = normal\n", "setting_version = 19\n",
+    // Named as Cura names it (after the file), on Cura's 0.2 mm generic quality ("draft"): the
+    // preset's layer height, so choosing it leaves a 0.2 mm user's layer height alone.
+    for (const char* line : {"[general]\nversion = 4\n", "name = clever_support\n", "definition = fdmprinter\n",
+                             "[metadata]\ntype = quality_changes\n", "quality_type = draft\n", "setting_version = 19\n",
                              "[values]\n", "support_wall_count = 1\n", "support_infill_rate = 0\n",
                              "support_join_distance = 0\n", "support_xy_distance = 0.2\n"})
         EXPECT_NE(cfg.find(line), std::string::npos) << line;
     EXPECT_EQ(count(cfg, " = "), 6 + long(cura_support_line_settings(Params{}).size()));
+    EXPECT_EQ(count(cfg, "layer_height"), 0);
+}
+
+// Each family's profile sits on that family's quality at the supports' layer height: Creality's
+// printers have no "draft" at 0.2 mm (theirs is 0.32 mm) and no "normal" at all.
+TEST(ThreeMF, CuraProfileQualityIsTheFamilysAtTheLayerHeight) {
+    const auto& generic = family("clever_support.curaprofile");
+    const auto& creality = family("clever_support_creality.curaprofile");
+    EXPECT_EQ(cura_quality_for(creality, 0.2).type, "standard");
+    EXPECT_EQ(cura_quality_for(creality, 0.12).type, "super");
+    EXPECT_EQ(cura_quality_for(generic, 0.1).type, "normal");
+    EXPECT_EQ(cura_quality_for(generic, 0.3).type, "verydraft");
+    auto cfg = unzip(encode_cura_profile(creality, Params{})).begin()->second;
+    EXPECT_NE(cfg.find("name = clever_support_creality\n"), std::string::npos) << cfg;
+    EXPECT_NE(cfg.find("quality_type = standard\n"), std::string::npos) << cfg;
+    EXPECT_EQ(count(cfg, "layer_height"), 0);
+    // Between two qualities the profile takes the nearer and keeps our layer height over its.
+    Params p;
+    p.layer_height = 0.16;
+    cfg = unzip(encode_cura_profile(creality, p)).begin()->second;
+    EXPECT_NE(cfg.find("quality_type = super\n"), std::string::npos) << cfg;  // 0.12 is nearer than 0.2 (ties: the first)
+    EXPECT_NE(cfg.find("layer_height = 0.16\n"), std::string::npos) << cfg;
+}
+
+// Every printer family's file is a different name, and every quality type appears once per family.
+TEST(ThreeMF, CuraPrinterFamiliesAreDistinct) {
+    std::set<std::string> files;
+    for (const auto& f : cura_printer_families()) {
+        EXPECT_TRUE(files.insert(f.file).second) << f.file;
+        std::set<std::string> types;
+        for (const auto& q : f.qualities) EXPECT_TRUE(types.insert(q.type).second) << f.file << " " << q.type;
+    }
 }
 
 // Cura trims a support mesh to support_xy_distance from the model; the profile lets it keep the
@@ -226,8 +269,10 @@ TEST(ThreeMF, CuraProfileHoldsTheSupportLineSettingsInCurasFormat) {
 TEST(ThreeMF, CuraProfileXyDistanceIsTheTipsSideClearance) {
     Params p;
     p.line_width = 0.45;
-    auto cfg = unzip(encode_cura_profile("x", p)).begin()->second;
-    EXPECT_NE(cfg.find("support_xy_distance = 0.225\n"), std::string::npos) << cfg;
+    for (const auto& f : cura_printer_families()) {
+        auto cfg = unzip(encode_cura_profile(f, p)).begin()->second;
+        EXPECT_NE(cfg.find("support_xy_distance = 0.225\n"), std::string::npos) << cfg;
+    }
 }
 
 // The bench slices our support mesh with profile.json's "mesh" mode; it must be what the profile
