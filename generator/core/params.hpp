@@ -45,7 +45,8 @@ struct Params {
     double model_clearance = 0.3;        // extra air kept between a strut and the model
     // Walls under ceilings that fall freely to the bed (ceilings/ceilings.hpp): rows at most this
     // far apart, joined into a meander; 0: trees everywhere. At most 1.4 x sampling_distance, so
-    // every point between two rows is within check's lattice reach of one (chosen by bench).
+    // every point between two rows is within check's lattice reach of one. Every preset turns
+    // them off (params.cpp): on the validation set they cost Cura minutes (README).
     double ceiling_span = 3.4;
     // Support blockers (placed-model coordinates): no tip, strut, foot or pillar may enter them.
     // Set from a user's edits (--block, support_blockers in a generated .scad); empty by default.
