@@ -12,8 +12,8 @@ const std::vector<Preset>& presets() {
         std::vector<Preset> v;
         Params g;  // defaults above are the generic preset, but:
         // walls under low ceilings are off: on the validation set (bench/validation, 2026-11-26)
-        // they took PrusaSlicer's support time from 1.24x to 1.14x snug (median) but Cura's from
-        // 1.02x to 1.15x its better support, and filament from 0.49x to 0.93x (CuraEngine 4.13
+        // they took PrusaSlicer's support time from 1.11x to 1.08x snug (median) but Cura's from
+        // 0.99x to 1.20x its better support, and filament from 0.49x to 0.97x (CuraEngine 4.13
         // prints a one-line wall as a loop, out and back). --ceiling-span 3.4 turns them on.
         g.ceiling_span = 0;
         v.push_back({"generic-0.4",
