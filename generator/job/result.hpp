@@ -20,6 +20,8 @@ struct Supports {
     SizedTree sized;
     std::vector<Strut> grown_struts;  // before omit_struts pruned them: the numbering edits refer to
     std::vector<Pillar> grown_pillars;  // likewise; pillar i is solid grown_struts.size() + i
+    std::vector<NodeKind> grown_kinds;  // likewise, per node: an omitted branch's leaves stay leaves in the
+                                        // .scad, so its tips come back when the omission is undone
     std::vector<Body> bodies;
     std::vector<CeilingWall> walls;  // under ceilings low over the bed or a floor (ceilings/ceilings.hpp)
     Mesh mesh;                       // the bodies, then the walls
