@@ -241,14 +241,16 @@ std::string emit_scad(const Supports& sp, const Job& job, const ScadMeta& meta) 
     s += regrow_section(job.params);
     s += provenance(job, meta);
     s += tree_data(sp);
-    s += wall_data(sp);
+    if (!sp.walls.empty()) s += wall_data(sp);  // no walls: the file is as it was before walls existed
     s += "include <clever_support.scad>\n\n";
     s += "union() {\n";
     s += "    if (show_model) color(\"lightgray\") import(cs_model_file, convexity = 10);\n";
     s += "    if (show_supports)\n";
     s += "        cs_tree(cs_tree_record, omit_struts, highlight_strut, k, d_min, d_max, strength_length, wall, tip_length,\n";
     s += "                tip_diameter, feet, foot_height, foot_extra, clearance);\n";
-    s += "    if (show_supports) cs_walls(cs_walls);\n";
+    // Only with walls: an empty third child changes OpenSCAD 2021's union of the other two (the
+    // bundled arches example's union then had shells that were not watertight).
+    if (!sp.walls.empty()) s += "    if (show_supports) cs_walls(cs_walls);\n";
     s += "}\n";
     s += "cs_show_edits(support_blockers, support_points);  // in the preview only\n";
     return s;
