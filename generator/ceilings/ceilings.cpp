@@ -370,34 +370,36 @@ std::vector<CeilingWall> flat_pieces(const Run& r, const Params& p) {
     return out;
 }
 
-// Is there an overhang face (seen from below) above x between heights z0 and z1? Rays go up from
-// z0, past the faces of any material they start in or cross (a floor under a low ceiling).
-bool overhang_between(const ModelQuery& q, const Vec3& x, double z0, double z1, double overhang_nz) {
+// The overhang face (seen from below) above x between heights z0 and z1, where there is one: the
+// point the ray meets it. Rays go up from z0, past the faces of any material they start in or cross
+// (a floor under a low ceiling).
+std::optional<Vec3> overhang_between(const ModelQuery& q, const Vec3& x, double z0, double z1, double overhang_nz) {
     Vec3 from{x.x, x.y, z0};
     for (int crossings = 0; crossings < 8; ++crossings) {
         auto hit = q.first_hit(from, {0, 0, 1});
-        if (!hit || hit->point.z > z1) return false;
+        if (!hit || hit->point.z > z1) return std::nullopt;
         const Vec3 n = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
-        if (n.z < overhang_nz * norm(n)) return true;
+        if (n.z < overhang_nz * norm(n)) return hit->point;
         from = hit->point + Vec3{0, 0, 1e-4};
     }
-    return true;  // a stack of faces: count it as surface to carry (the sample keeps its tip)
+    return from;  // a stack of faces: count it as surface to carry
 }
 
 // Does every point of the sample's lattice cell on its own stretch of surface lie within reach of
-// a wall's top?
+// a wall's top, measured in 3D from where the surface is (as `check` measures it: on a round
+// ceiling a point beside the wall lies higher or lower than the wall's top)?
 bool walls_carry(const ModelQuery& q, const XyGrid<Vec3>& tops, const Vec3& s, const Params& p, double overhang_nz) {
     const double sd = p.sampling_distance, reach = kWallReach * sd, rise = same_surface_rise(p, reach);
     const long rings = static_cast<long>(std::ceil(reach / tops.cell())) + 1;
     auto within = [&](const Vec3& x) {
-        return tops.visit_near(x, rings, [&](const Vec3& t) { return horizontal_distance(t, x) <= reach && std::abs(t.z - x.z) <= rise; });
+        return tops.visit_near(x, rings, [&](const Vec3& t) { return distance(t, x) <= reach; });
     };
     if (!within(s)) return false;
     for (int i = 0; i < kCellProbes; ++i)
         for (int j = 0; j < kCellProbes; ++j) {
-            Vec3 x{s.x + sd * (double(i) / (kCellProbes - 1) - 0.5), s.y + sd * (double(j) / (kCellProbes - 1) - 0.5), s.z};
-            if (within(x)) continue;
-            if (overhang_between(q, x, s.z - 2 * rise, s.z + 2 * rise, overhang_nz)) return false;
+            const Vec3 x{s.x + sd * (double(i) / (kCellProbes - 1) - 0.5), s.y + sd * (double(j) / (kCellProbes - 1) - 0.5), s.z};
+            const auto surface = overhang_between(q, x, s.z - 2 * rise, s.z + 2 * rise, overhang_nz);
+            if (surface && !within(*surface)) return false;
         }
     return true;
 }
