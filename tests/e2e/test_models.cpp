@@ -58,9 +58,9 @@ Generated generate(const std::string& input, double scale, const std::string& ou
 // ceiling, measured: the generator may only get better (lower it when it does); everything else
 // the judge asks must hold outright. Since no strut or tip is built nearer the model than the z
 // gap (a leaf that finds no such way down is given up, and counted in the dropped samples), no
-// model has a fused or penetrating solid. One place stays beyond reach: the bird's chosen pose
-// (4 points, 0.08 mm beyond reach), where no tip of the default width fits under the overhang
-// with the gap. (nefertiti's 3 points behind the headdress were a scanner's folded sliver, a
+// model has a fused or penetrating solid. (The bird's chosen pose had 4 points 0.08 mm beyond
+// reach, where no tip's square fitted under a slope running diagonally to it; such a tip may now
+// drop as far as the square's corner needs, tree/placement.cpp place_tip_top.) (nefertiti's 3 points behind the headdress were a scanner's folded sliver, a
 // hanging keel no tip fits under; repair now unfolds it, mesh/unfold_caps.hpp.) With
 // --buildplate-only a dead end sends its leaves down again, merging only among themselves, then
 // one by one, so the dropped branches counted there are single leaves that found no way to the
@@ -94,14 +94,14 @@ KnownShortfall known_shortfall(const std::string& file, bool buildplate_only) {
         {"example:wheel", {{0, 0, 0, 0, 0}, {}}},
         {"auto:wheel", {{0, 0, 0, 0, 0}, {}}},
         {"example:bird", {{0, 0, 2, 0, 0}, {}}},
-        {"auto:bird", {{0, 0, 4, 2, 4}, {}}},
+        {"auto:bird", {{0, 0, 3, 2, 0}, {}}},
         // bench/validation: parts the generator is never tuned on (issue 32).
         {"validation:bearing_block", {{0, 0, 0, 0, 0}, {}}},
         {"validation:cable_clip", {{0, 0, 0, 0, 0}, {}}},
         {"validation:enclosure_lid", {{0, 0, 0, 0, 0}, {}}},
         {"validation:ledges_low_roof", {{0, 0, 0, 0, 0}, {}}},
         {"validation:pipe_tee", {{0, 0, 0, 0, 0}, {}}},
-        {"validation:propeller", {{0, 0, 5, 0, 24}, {}}},  // a crevice between blades: 5 samples stuck
+        {"validation:propeller", {{0, 0, 0, 0, 0}, {}}},
         {"validation:shelf_bracket", {{0, 0, 0, 0, 0}, {}}},
         {"validation:shelter_roof", {{0, 0, 0, 0, 0}, {}}},
         {"validation:wall_rack", {{0, 0, 0, 0, 0}, {}}}
