@@ -377,12 +377,54 @@ bool left_out(const Vec3& x, const std::vector<Box3>& boxes, const Params& p) {
     return false;
 }
 
+// The tops of the tips the user's omit_struts took out of the recorded tree: an omitted strut
+// goes with every strut above it (the struts ending on its top, and so on up), a leaf's tip with
+// the strut leaving the leaf; numbers from the strut count on are pillars. Out-of-range numbers
+// name nothing, and a tree with a negative node number is taken as none (the .scad reader refuses
+// both before a run is judged).
+std::vector<Vec3> omitted_tip_tops(const RecordedTree& t, const std::vector<int>& omit) {
+    for (const auto& s : t.struts)
+        if (s[0] < 0 || s[1] < 0) return {};
+    const int count = static_cast<int>(t.struts.size());
+    int nodes = 0;
+    for (const auto& s : t.struts) nodes = std::max({nodes, s[0] + 1, s[1] + 1});
+    std::vector<std::vector<int>> ending_on(nodes);
+    for (int e = 0; e < count; ++e) ending_on[t.struts[e][1]].push_back(e);
+    std::vector<char> gone(count, 0);
+    std::vector<int> todo;
+    std::vector<Vec3> tops;
+    for (int e : omit) {
+        if (e >= 0 && e < count) todo.push_back(e);
+        else if (e >= count && e - count < static_cast<int>(t.pillar_tops.size())) tops.push_back(t.pillar_tops[e - count]);
+    }
+    while (!todo.empty()) {
+        const int e = todo.back();
+        todo.pop_back();
+        if (gone[e]) continue;
+        gone[e] = 1;
+        for (int f : ending_on[t.struts[e][0]]) todo.push_back(f);
+    }
+    std::vector<char> leaving(nodes, 0), kept(nodes, 0);  // per node: some strut leaves it; some kept one
+    for (int e = 0; e < count; ++e) leaving[t.struts[e][0]] = 1, kept[t.struts[e][0]] |= !gone[e];
+    for (const auto& [leaf, top] : t.tips)
+        if (leaf >= 0 && leaf < nodes && leaving[leaf] && !kept[leaf]) tops.push_back(top);
+    return tops;
+}
+
 void check_coverage(const Mesh& model, const ModelQuery& q, const std::vector<Shell>& shells, const Params& p,
-                    const Tolerances& t, const std::vector<Box3>& blocked, CheckResult& r) {
+                    const Tolerances& t, const CheckOptions& o, CheckResult& r) {
     JudgeOverhangs j = judge_overhangs(model, p.critical_angle, p.layer_height, t.spacing);
     NearGrid near(t.reach);
     for (const auto& s : shells)
         if (s.top_contact) near.add(s.contact), ++r.contacts;
+    // Where the omitted tips would have held the print: the model right above each one's top.
+    NearGrid held(t.reach);
+    for (const Vec3& top : omitted_tip_tops(o.tree, o.omitted_struts)) {
+        const double up = gap_up(q, top);
+        held.add({top.x, top.y, top.z + (std::isfinite(up) && up > 0 ? up : 0.0)});
+        ++r.omitted_tips;
+    }
+    r.omitted_struts = o.omitted_struts.size();
     for (const auto& a : j.corner_anchors) near.add(a);
     const Vec3 just_below{0, 0, 0.01};
     std::vector<const JudgePoint*> need;
@@ -401,7 +443,7 @@ void check_coverage(const Mesh& model, const ModelQuery& q, const std::vector<Sh
             near.add(x.p);
             continue;
         }
-        if (left_out(x.p, blocked, p)) {
+        if (left_out(x.p, o.left_out, p)) {
             ++r.left_out;
             r.left_out_area += x.area;
             continue;
@@ -411,6 +453,11 @@ void check_coverage(const Mesh& model, const ModelQuery& q, const std::vector<Sh
     const double limit = 8 * t.reach;
     for (const JudgePoint* x : need) {
         double d = near.nearest(x->p, t.rise, limit);
+        if (d > t.reach && held.nearest(x->p, t.rise, t.reach) <= t.reach) {
+            ++r.omitted;
+            r.omitted_area += x->area;
+            continue;
+        }
         if (d > r.largest_gap) r.largest_gap = std::min(d, limit), r.largest_gap_at = x->p;
         if (d <= t.reach) {
             ++r.covered;
@@ -442,7 +489,7 @@ CheckResult check_supports(const Mesh& model_in, const Mesh& supports, const Par
     }
     check_grounding(q, shells, t, r);
     r.blocked_regions = o.left_out.size();
-    check_coverage(model, q, shells, p, t, o.left_out, r);
+    check_coverage(model, q, shells, p, t, o, r);
     return r;
 }
 

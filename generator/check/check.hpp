@@ -18,6 +18,13 @@
 //               Left out on purpose: points in a region the user blocked (`left_out` boxes: the
 //               run's support blockers, `check --block`), or whose tip (gap plus tip length below
 //               the point, tip diameter wide) would reach into one. They are counted, not failed.
+//               Likewise, left out by the user's edit: a point beyond reach of every contact that
+//               lies within reach (on the same stretch of surface) of a tip the user's omit_struts
+//               took out. The judge finds those tips itself from the tree the run recorded
+//               (`tree`): an omitted strut goes with every strut above it, a leaf with the strut
+//               leaving it, a pillar by its number after the struts; the model right above a
+//               tip's top is where it would have held the print. No wider: a point that no
+//               omitted tip held is judged as any other.
 //  air gap      every contact's gap (the smallest vertical distance from its top to the model) is
 //               at least `gap - gap_tolerance`; a solid fused to the print fails.
 //  penetration  every solid, tips included, is sampled over its faces; no point lies inside the
@@ -46,6 +53,7 @@
 
 #include "core/geometry.hpp"
 #include "core/params.hpp"
+#include "core/recorded_tree.hpp"
 
 namespace cs {
 
@@ -56,6 +64,9 @@ struct CheckOptions {
     double angle_tolerance = 0.5;       // degrees
     double spacing = 0;                 // mm between the judge's overhang points; 0: min(0.5, reach / 3)
     std::vector<Box3> left_out;         // regions the user blocked: their overhang needs no contact
+    RecordedTree tree;                  // the run's tree as its .scad records it, and
+    std::vector<int> omitted_struts;    // the struts the user left out there (omit_struts): what their
+                                        // tips held needs no contact
 
     // Half the diagonal of a unit square, rounded up: the farthest a point of a flat overhang is
     // from the nearest lattice contact.
@@ -74,6 +85,9 @@ struct CheckResult {
     std::size_t left_out = 0;         // of overhang_points: in a blocked region, left out on purpose
     double left_out_area = 0;         // mm^2 of overhang they stand for
     std::size_t blocked_regions = 0;
+    std::size_t omitted = 0;          // of overhang_points: held by a tip the user omitted, left out on purpose
+    double omitted_area = 0;          // mm^2 of overhang they stand for
+    std::size_t omitted_struts = 0, omitted_tips = 0;  // the user's omissions, and the tips they took out
     std::size_t face_points = 0, ridge_points = 0, lowest_points = 0;
     std::size_t contacts = 0;
     double reach = 0;
@@ -98,7 +112,7 @@ struct CheckResult {
     bool model_closed = true;  // with holes, inside is the winding test's fair guess
     std::vector<Flag> flagged;  // first few failures of the solid checks, with places
 
-    bool coverage_ok() const { return covered + exempt + left_out == overhang_points; }
+    bool coverage_ok() const { return covered + exempt + left_out + omitted == overhang_points; }
     bool gap_ok() const { return fused_contacts == 0; }
     bool ok() const {
         return coverage_ok() && gap_ok() && open_bodies == 0 && inward_bodies == 0 && penetrating_bodies == 0 &&

@@ -29,7 +29,7 @@ std::string format_place(const Vec3& p) {
 
 std::string CheckResult::summary() const {
     std::ostringstream s;
-    s << mark(coverage_ok()) << " coverage     " << covered << " of " << (overhang_points - exempt - left_out)
+    s << mark(coverage_ok()) << " coverage     " << covered << " of " << (overhang_points - exempt - left_out - omitted)
       << " overhang points have a contact within " << mm(reach) << " mm (" << face_points << " on faces, "
       << ridge_points << " on ridges, " << lowest_points << " lowest points; " << exempt
       << " rest on what is below; " << contacts << " contacts)\n";
@@ -39,6 +39,10 @@ std::string CheckResult::summary() const {
     if (blocked_regions)
         s << "     left out     " << left_out << " overhang points (" << mm(left_out_area) << " mm2) in "
           << blocked_regions << " blocked region" << (blocked_regions == 1 ? "" : "s") << ": left out on purpose\n";
+    if (omitted_struts)
+        s << "     left out     " << omitted << " overhang points (" << mm(omitted_area) << " mm2) that the "
+          << omitted_tips << " tips of " << omitted_struts << " omitted strut" << (omitted_struts == 1 ? "" : "s")
+          << " held (omit_struts): left out on purpose by the user's edit\n";
     s << mark(gap_ok()) << " air gap      " << fused_contacts << " contacts closer to the model than the gap";
     if (min_air_gap < INFINITY) s << " (smallest " << mm(min_air_gap) << " mm at " << format_place(min_air_gap_at) << ")";
     s << "\n";
@@ -68,7 +72,9 @@ std::string CheckResult::json() const {
                      {"lowest_points", lowest_points}, {"contacts", contacts},       {"reach_mm", reach},
                      {"largest_gap_mm", largest_gap}, {"largest_gap_at", xyz(largest_gap_at)},
                      {"uncovered_area_mm2", uncovered_area}, {"uncovered", unc},
-                     {"left_out_on_purpose", {{"points", left_out}, {"area_mm2", left_out_area}, {"regions", blocked_regions}}}};
+                     {"left_out_on_purpose", {{"points", left_out}, {"area_mm2", left_out_area}, {"regions", blocked_regions},
+                                              {"omitted_struts", {{"struts", omitted_struts}, {"tips", omitted_tips},
+                                                                  {"points", omitted}, {"area_mm2", omitted_area}}}}}};
     j["air_gap"] = {{"ok", gap_ok()}, {"fused", fused_contacts},
                     {"min_mm", min_air_gap < INFINITY ? nlohmann::ordered_json(min_air_gap) : nlohmann::ordered_json()}};
     j["penetration"] = {{"bodies", penetrating_bodies}, {"max_mm", max_penetration}, {"model_closed", model_closed}};

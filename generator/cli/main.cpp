@@ -474,6 +474,8 @@ struct Judged {
     std::string model, supports;
     Params params;
     std::vector<Box3> left_out;
+    RecordedTree tree;                // the run's tree as recorded, and
+    std::vector<int> omitted_struts;  // the struts the user left out of it
     std::string settings_from;  // where the settings come from, for the printed line
 };
 
@@ -487,6 +489,8 @@ Judged judged_run(const CheckArgs& c) {
         j.supports = stem + ".supports.stl";
         j.params = c.params.resolve_over(edited.job.params);
         j.left_out = edited.job.edits.support_blockers;
+        j.tree = edited.tree;
+        j.omitted_struts = edited.job.edits.omit_struts;
         j.settings_from = c.params.preset_given || !c.params.config.empty() ? "as given" : "read from " + scad;
         if (!c.params.given.empty() && j.settings_from != "as given") j.settings_from += ", flags on top";
     } else {
@@ -510,10 +514,16 @@ std::string settings_line(const Judged& j, const CheckResult& r) {
     char b[512];
     std::snprintf(b, sizeof b,
                   "judged with preset %s (%s): critical angle %g deg, layer %g mm, sampling %g mm (reach %.2f mm), "
-                  "gap %g mm, tip %g mm wide, %g mm long; %zu region%s left out on purpose\n",
+                  "gap %g mm, tip %g mm wide, %g mm long; %zu region%s left out on purpose",
                   p.preset.c_str(), j.settings_from.c_str(), p.critical_angle, p.layer_height, p.sampling_distance, r.reach,
                   p.gap, p.tip_diameter, p.tip_length, j.left_out.size(), j.left_out.size() == 1 ? "" : "s");
-    return b;
+    std::string line = b;
+    if (!j.omitted_struts.empty()) {
+        line += ", and what omit_struts [";
+        for (size_t i = 0; i < j.omitted_struts.size(); ++i) line += (i ? ", " : "") + std::to_string(j.omitted_struts[i]);
+        line += "] took out";
+    }
+    return line + "\n";
 }
 
 nlohmann::ordered_json settings_json(const Judged& j, const CheckResult& r) {
@@ -523,7 +533,8 @@ nlohmann::ordered_json settings_json(const Judged& j, const CheckResult& r) {
     return {{"preset", p.preset}, {"from", j.settings_from}, {"model", j.model}, {"supports", j.supports},
             {"critical_angle_deg", p.critical_angle}, {"layer_height_mm", p.layer_height},
             {"sampling_distance_mm", p.sampling_distance}, {"reach_mm", r.reach}, {"gap_mm", p.gap},
-            {"tip_diameter_mm", p.tip_diameter}, {"tip_length_mm", p.tip_length}, {"left_out", boxes}};
+            {"tip_diameter_mm", p.tip_diameter}, {"tip_length_mm", p.tip_length}, {"left_out", boxes},
+            {"omit_struts", j.omitted_struts}};
 }
 
 int cmd_check(const CheckArgs& c) {
@@ -532,6 +543,8 @@ int cmd_check(const CheckArgs& c) {
     Mesh sup = read_mesh(j.supports, /*allow_empty=*/true);
     CheckOptions options = c.options;
     options.left_out = j.left_out;
+    options.tree = j.tree;
+    options.omitted_struts = j.omitted_struts;
     auto res = check_supports(model, sup, j.params, options);
     if (c.as_json) {
         auto out = nlohmann::ordered_json::parse(res.json());

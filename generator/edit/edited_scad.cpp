@@ -98,21 +98,37 @@ Params read_params(const Reader& r) {
     return p;
 }
 
-// The tree lists: every node index in a strut in range (the struts' count bounds the edits).
-int check_tree(const Reader& r) {
+// The tree lists: every node index in a strut or a leaf in range, every point a point (the
+// struts' and pillars' count bounds the edits).
+RecordedTree read_tree(const Reader& r) {
     const auto& nodes = r.list("cs_nodes");
     for (size_t i = 0; i < nodes.value.size(); ++i) r.point(nodes.value[i], r.line_of(nodes, i), "node " + std::to_string(i));
     const int n = static_cast<int>(nodes.value.size());
+    RecordedTree t;
     const auto& struts = r.list("cs_struts");
     for (size_t e = 0; e < struts.value.size(); ++e) {
         const auto& s = struts.value[e];
         int line = r.line_of(struts, e);
         std::string what = "strut " + std::to_string(e);
         if (!s.is_array() || s.size() != 2) r.fail(line, what + " must be [top node, bottom node]");
-        r.index(s[0], line, what + ": top node", n);
-        r.index(s[1], line, what + ": bottom node", n);
+        t.struts.push_back({r.index(s[0], line, what + ": top node", n), r.index(s[1], line, what + ": bottom node", n)});
     }
-    return static_cast<int>(struts.value.size() + r.list("cs_pillars").value.size());  // pillars numbered after struts
+    const auto& leaves = r.list("cs_leaves");
+    for (size_t i = 0; i < leaves.value.size(); ++i) {
+        const auto& l = leaves.value[i];
+        int line = r.line_of(leaves, i);
+        if (!l.is_array() || l.size() != 3) r.fail(line, "cs_leaves: each must be [leaf node, [x, y, z] sample, [x, y, z] tip top]");
+        t.tips.push_back({r.index(l[0], line, "cs_leaves: leaf node", n), r.point(l[2], line, "cs_leaves: tip top")});
+    }
+    const auto& pillars = r.list("cs_pillars");
+    for (size_t i = 0; i < pillars.value.size(); ++i) {
+        const auto& pl = pillars.value[i];
+        int line = r.line_of(pillars, i);
+        if (!pl.is_array() || pl.size() != 2) r.fail(line, "cs_pillars: each must be [[x, y, z] top, [x, y, z] bottom]");
+        t.pillar_tops.push_back(r.point(pl[0], line, "cs_pillars: top"));
+        r.point(pl[1], line, "cs_pillars: bottom");
+    }
+    return t;
 }
 
 ManualEdits read_edits(const Reader& r, int struts) {
@@ -171,9 +187,13 @@ EditedScad read_edited_scad_text(const std::string& text, const std::string& pat
         job.params = read_params(r);
         validate_params(job.params, ParamNaming::scad);
     } catch (const ParameterError& e) {
-        throw ParameterError(path + ": " + e.what());
+        // "d_max = 4 is out of range (...)" starts with the value's .scad name: name its line too.
+        const std::string what = e.what(), name = what.substr(0, what.find(" = "));
+        if (r.has(name)) throw ParameterError(path + ":" + std::to_string(r.get(name).line) + ": " + what);
+        throw ParameterError(path + ": " + what);
     }
-    job.edits = read_edits(r, check_tree(r));
+    out.tree = read_tree(r);
+    job.edits = read_edits(r, static_cast<int>(out.tree.struts.size() + out.tree.pillar_tops.size()));  // pillars after struts
     out.input_sha256 = r.text("cs_input_sha256");
     const auto& pose = r.list("cs_pose");
     for (size_t i = 0; i < pose.value.size(); ++i) {

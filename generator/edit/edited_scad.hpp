@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "core/recorded_tree.hpp"
 #include "job/job.hpp"
 
 namespace cs {
@@ -15,6 +16,7 @@ struct EditedScad {
     std::string input_sha256;   // of the input when the file was written
     std::string folder;         // where the file is: regrow writes the outputs there
     std::vector<double> pose;   // the placement the edits' coordinates assume (pose_numbers)
+    RecordedTree tree;          // the tree as recorded: what omit_struts and highlight_strut number
 };
 
 // Throws InputError "PATH:LINE: ..." for a malformed file, ParameterError for a value out of range.

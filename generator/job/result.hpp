@@ -19,6 +19,8 @@ struct Supports {
     SizedTree sized;
     std::vector<Strut> grown_struts;  // before omit_struts pruned them: the numbering edits refer to
     std::vector<Pillar> grown_pillars;  // likewise; pillar i is solid grown_struts.size() + i
+    std::vector<NodeKind> grown_kinds;  // likewise, per node: an omitted branch's leaves stay leaves in the
+                                        // .scad, so its tips come back when the omission is undone
     std::vector<Body> bodies;
     Mesh mesh;
     double volume = 0;         // of the support solid, overlaps at joints counted once (solid_volume), mm^3

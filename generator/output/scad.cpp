@@ -167,11 +167,15 @@ std::string tree_data(const Supports& sp) {
     for (size_t i = 0; i < t.nodes.size(); ++i) {
         const Node& n = t.nodes[i];
         const std::string id = std::to_string(i);
-        if (n.kind == NodeKind::Leaf)
+        // The leaves and beds of a branch omit_struts took out are still listed: OpenSCAD draws
+        // nothing of them while the strut is omitted and brings tips and feet back with the strut
+        // when the omission is undone, and check knows which overhang the omission left bare.
+        const NodeKind kind = n.kind == NodeKind::Dropped && i < sp.grown_kinds.size() ? sp.grown_kinds[i] : n.kind;
+        if (kind == NodeKind::Leaf)
             leaves.push_back({id, fmt::format("[{}, {}, {}]", i, pt(n.contact), pt(n.tip))});
-        else if (n.kind == NodeKind::ModelContact) {
+        else if (kind == NodeKind::ModelContact) {
             if (const auto& bottom = sp.sized.contact_tip[i]) contacts.push_back({id, fmt::format("[{}, {}]", i, pt(*bottom))});
-        } else if (n.kind == NodeKind::Bed)
+        } else if (kind == NodeKind::Bed)
             beds.push_back({id, fmt::format("[{}, {}]", i, std::isfinite(n.room) ? num(n.room) : std::string("1e9"))});
     }
     // Numbered after the struts: omit_struts leaves a pillar out by that number.

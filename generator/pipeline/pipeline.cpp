@@ -140,6 +140,7 @@ Supports finish_supports(SupportTree grown, const Params& p, const std::vector<i
     Supports s;
     s.grown_struts = grown.struts;
     s.grown_pillars = grown.pillars;
+    for (const Node& n : grown.nodes) s.grown_kinds.push_back(n.kind);
     const std::optional<SlicerCost> priced = omit.empty() ? grown.slicer_cost : std::nullopt;
     s.sized = size_struts(prune_struts(std::move(grown), omit), p);
     s.slicer_cost = priced ? *priced : estimate_slicer_cost(s.sized.tree, mean_strut_widths(s.sized), p);
@@ -206,6 +207,32 @@ namespace {
 bool in_support_blocker(const Vec3& s, const std::vector<Box3>& support_blockers, const Params& p) {
     const double tip = p.gap + p.tip_length, tip_width = std::max(p.tip_diameter, p.d_min);
     return sweep_meets_boxes(s, s - Vec3{0, 0, tip}, tip_width, 0, support_blockers);
+}
+
+// A sample beside a blocker, whose tip would only graze it: moved straight out from the box, just
+// far enough for the tip to clear it, onto the model's underside there. The user blocked the box,
+// not the overhang beside it, which would otherwise be left bare up to the next row of samples.
+// Nothing when the sample is over the box (its tip stands in it), or when no underside is there.
+std::optional<Vec3> beside_blockers(const ModelQuery& model, const Vec3& s, const std::vector<Box3>& support_blockers,
+                                    const Params& p) {
+    const double tip = p.gap + p.tip_length, half = 0.5 * std::max(p.tip_diameter, p.d_min) + 1e-3;
+    Vec3 to = s;
+    for (int pass = 0; pass < 2; ++pass)  // moved out of one box, it may graze the one beside it
+        for (const Box3& b : support_blockers) {
+            if (!sweep_meets_boxes(to, to - Vec3{0, 0, tip}, 2 * half, 0, {b})) continue;
+            const bool over_x = to.x >= b.min.x && to.x <= b.max.x, over_y = to.y >= b.min.y && to.y <= b.max.y;
+            if (over_x && over_y) return std::nullopt;
+            if (!over_x) to.x = to.x < b.min.x ? b.min.x - half : b.max.x + half;
+            if (!over_y) to.y = to.y < b.min.y ? b.min.y - half : b.max.y + half;
+        }
+    if (in_support_blocker(to, support_blockers, p)) return std::nullopt;
+    // The underside there: the first face up from below, facing down, about as high as the sample
+    // (a face rises at most as steeply as a wall over the distance moved).
+    const double shift = horizontal_distance(to, s), slack = 2 * shift + p.layer_height;
+    auto hit = model.first_hit({to.x, to.y, s.z - slack}, {0, 0, 1});
+    if (!hit || hit->point.z > s.z + slack) return std::nullopt;
+    if (face_normal_unnormalized(model.mesh(), model.mesh().faces[hit->face]).z >= 0) return std::nullopt;
+    return hit->point;
 }
 
 // What holds each sample's overhang up, at the height of that overhang: a live leaf's tip top, a
@@ -312,7 +339,12 @@ constexpr double kSupportPointSnap = 2.0;
 std::vector<Sample> edited_samples(const ModelQuery& model, std::vector<Sample> samples, const ManualEdits& edits,
                                    const Params& p) {
     auto blocked = [&](const Vec3& s) { return in_support_blocker(s, edits.support_blockers, p); };
-    std::erase_if(samples, [&](const Sample& s) { return blocked(s.p); });
+    std::vector<Sample> kept;
+    for (const Sample& s : samples) {
+        if (!blocked(s.p)) kept.push_back(s);
+        else if (auto moved = beside_blockers(model, s.p, edits.support_blockers, p)) kept.push_back({*moved, s.kind});
+    }
+    samples = std::move(kept);
     for (const Vec3& given : edits.support_points) {
         auto where = fmt::format("support point [{}, {}, {}]", given.x, given.y, given.z);
         Vec3 on = model.closest_point(given);

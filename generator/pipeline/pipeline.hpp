@@ -52,8 +52,9 @@ Supports finish_supports(SupportTree grown, const Params& p, const std::vector<i
 // that is neither a strut nor a pillar of the tree.
 SupportTree prune_struts(SupportTree tree, const std::vector<int>& omit);
 
-// The samples a user's edits leave: none inside a blocker or whose tip would pass through one,
-// plus each support point on the model's underside near it. Throws ParameterError for a support
+// The samples a user's edits leave: none over a blocker or whose tip would pass through one (a
+// sample beside a blocker whose tip would only graze it is moved out, just clear of the box, onto
+// the underside there), plus each support point on the model's underside near it. Throws ParameterError for a support
 // point that is not near the model's underside. Sorted as sample_overhangs sorts.
 std::vector<Sample> edited_samples(const ModelQuery& model, std::vector<Sample> samples, const ManualEdits& edits,
                                    const Params& p);

@@ -8,7 +8,6 @@
 #include "core/errors.hpp"
 #include "edit/edited_scad.hpp"
 #include "mesh/mesh_io.hpp"
-#include "mesh/repair.hpp"
 #include "pipeline/pipeline.hpp"
 #include "struts/struts.hpp"
 #include "view/view_tree.hpp"
@@ -112,11 +111,15 @@ nlohmann::json view_scad_state(const std::string& text, const std::string& scad_
             {"sampling", p.sampling_distance}};
 }
 
+// Judged as `clever-support check FOLDER` judges it: the model as written, the file's settings,
+// its blockers and omitted struts left out on purpose.
 nlohmann::json view_check(const ViewFolder& f, const std::string& scad_text) {
-    Params p = read_edited_scad_text(scad_text, f.scad()).job.params;
-    RepairReport rr;
-    Mesh model = repair_mesh(read_mesh(f.file(".model.stl")), f.file(".model.stl"), rr);
-    CheckResult c = check_supports(model, read_mesh(f.file(".supports.stl"), true), p, CheckOptions{});
+    const EditedScad e = read_edited_scad_text(scad_text, f.scad());
+    CheckOptions o;
+    o.left_out = e.job.edits.support_blockers;
+    o.tree = e.tree;
+    o.omitted_struts = e.job.edits.omit_struts;
+    CheckResult c = check_supports(read_mesh(f.file(".model.stl")), read_mesh(f.file(".supports.stl"), true), e.job.params, o);
     nlohmann::json uncovered = nlohmann::json::array(), flagged = nlohmann::json::array();
     for (const auto& u : c.uncovered) uncovered.push_back(xyz(u));
     if (!c.coverage_ok()) uncovered.push_back(xyz(c.largest_gap_at));
@@ -124,7 +127,8 @@ nlohmann::json view_check(const ViewFolder& f, const std::string& scad_text) {
     if (!c.gap_ok()) flagged.push_back({{"what", "fused contact: air gap " + std::to_string(c.min_air_gap) + " mm"}, {"at", xyz(c.min_air_gap_at)}});
     if (c.penetrating_bodies) flagged.push_back({{"what", "deepest penetration"}, {"at", xyz(c.max_penetration_at)}});
     return {{"ok", c.ok()}, {"coverage_ok", c.coverage_ok()}, {"summary", c.summary()}, {"uncovered", uncovered},
-            {"uncovered_area_mm2", c.uncovered_area}, {"largest_gap", c.largest_gap}, {"reach", c.reach},
+            {"uncovered_area_mm2", c.uncovered_area}, {"left_out_area_mm2", c.left_out_area + c.omitted_area},
+            {"largest_gap", c.largest_gap}, {"reach", c.reach},
             {"flagged", flagged}};
 }
 

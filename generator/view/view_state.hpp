@@ -31,9 +31,11 @@ ViewFolder find_view_folder(const std::string& target);
 // Throws InputError (FILE:LINE: ...) or ParameterError when the text does not read as regrow reads it.
 nlohmann::json view_scad_state(const std::string& text, const std::string& scad_path);
 
-// `check` (check/check.hpp) on the folder's model and supports with the .scad's parameters: its
-// verdict, summary and the places it flags (overhang points beyond reach, fused contacts, solids
-// in the model). Throws what read_mesh throws for a missing or broken STL.
+// `check` (check/check.hpp) on the folder's model and supports as `clever-support check FOLDER`
+// judges them (the .scad's parameters; its blockers and omitted struts left out on purpose): its
+// verdict, summary, the overhang area left out on purpose and the places it flags (overhang points
+// beyond reach, fused contacts, solids in the model). Throws what read_mesh throws for a missing
+// or broken STL.
 nlohmann::json view_check(const ViewFolder& f, const std::string& scad_text);
 
 }  // namespace cs

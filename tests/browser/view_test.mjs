@@ -1,7 +1,8 @@
 // `clever-support view` in a real browser (Debian's chromium, driven by the pinned puppeteer-core):
 // the server refuses foreign requests, the page draws model and supports, and a strut omitted, a
-// support point and a blocker added by mouse, then Regrow, leave the .scad holding the three edits
-// and the supports exactly as `clever-support regrow` grows them from that file.
+// support point and a blocker added by mouse, then Regrow, leave the .scad holding the three edits,
+// the supports exactly as `clever-support regrow` grows them from that file, and `check` passing
+// (what the edits left bare reported as left out on purpose).
 //
 // usage: node view_test.mjs CLEVER_SUPPORT SOURCE_DIR [SCREENSHOT.png]
 // Exit 0 pass, 1 fail, 77 skipped (chromium cannot start here; with CI=true that is a failure).
@@ -42,6 +43,16 @@ const scadList = (text, name) => {
   assert.ok(m, `${name} is assigned in the .scad`);
   return JSON.parse(m[1]);
 };
+
+// An ASCII STL of the box from corner `a` to corner `b`, its faces outward.
+function boxStl(a, b) {
+  const v = [];
+  for (const z of [a[2], b[2]]) for (const y of [a[1], b[1]]) for (const x of [a[0], b[0]]) v.push([x, y, z]);
+  const quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+  const facets = quads.flatMap(([p, q, r, t]) => [[p, q, r], [p, r, t]]).map((f) =>
+    ` facet normal 0 0 0\n  outer loop\n${f.map((i) => `   vertex ${v[i].join(' ')}`).join('\n')}\n  endloop\n endfacet`);
+  return `solid box\n${facets.join('\n')}\nendsolid box\n`;
+}
 
 // A raw request: the path exactly as given (no normalising), any Host header.
 function request(port, rawPath, host, method = 'GET', body = null) {
@@ -219,7 +230,7 @@ async function main() {
   await slide('d_min', 5);  // thicker than d_max = 4
   await page.waitForFunction(() => !document.getElementById('message').hidden);
   const refusal = await page.$eval('#message', (e) => e.textContent);
-  assert.match(refusal, /arches\.scad: .*d_min/, 'the message names the file and the value, as regrow says it');
+  assert.match(refusal, /arches\.scad:\d+: d_max = 4 is out of range/, 'the message names the file, the line and the value, as regrow says it');
   say(`refused: "${refusal}"`);
   assert.deepEqual(errors, ['Failed to load resource: the server responded with a status of 400 (Bad Request)'],
     'the refused edit is the only failed request');
@@ -231,7 +242,6 @@ async function main() {
   assert.deepEqual(scadList(edited, 'omit_struts'), [target.i]);
   say(`edits in the .scad: omit_struts ${JSON.stringify(scadList(edited, 'omit_struts'))}, support_points ` +
       `${JSON.stringify(scadList(edited, 'support_points'))}, support_blockers ${JSON.stringify(scadList(edited, 'support_blockers'))}`);
-  const omittedTops = (await page.evaluate(() => window.csView.state().struts)).filter((s) => s[6]).map((s) => s[0]);
 
   // 5. Regrow, with progress, and the view reloads.
   await page.click('#regrow');
@@ -241,19 +251,19 @@ async function main() {
   assert.equal(stage, 'regrown', `regrow finished (${message})`);
   say('regrown from the page');
   assert.deepEqual(errors, [], 'no errors in the page');
-  // check's verdict on the regrown supports, as colour: the overhang the edits left bare in red.
+  // check's verdict on the regrown supports, in the panel: it passes, what the edits left bare
+  // counted as left out on purpose (the omitted branch by the file's omit_struts, the blocker's region).
   const judged = await page.evaluate(() => window.csView.state().check);
-  assert.equal(judged.coverage_ok, false, 'the omitted branch and the blocked underside are bare');
-  assert.ok(judged.uncovered.length > 0, 'with places to mark in red');
-  const red = await page.evaluate(() => window.csView.markCount());
-  assert.ok(red.beyond >= judged.uncovered.length, `the places are drawn (${red.beyond} red marks)`);
+  assert.equal(judged.ok, true, `check passes on the regrown supports:\n${judged.summary}`);
+  assert.ok(judged.left_out_area_mm2 > 0, 'the overhang the edits left bare is counted as left out on purpose');
+  assert.match(await page.$eval('#verdict', (e) => e.textContent), /^passes: .*mm² left out on purpose by your edits\)$/);
+  assert.equal((await page.evaluate(() => window.csView.markCount())).beyond, 0, 'nothing is marked red');
 
   // The .scad holds the three edits (regrow keeps them).
   const text = fs.readFileSync(scad, 'utf8');
   assert.deepEqual(scadList(text, 'omit_struts'), [target.i]);
   assert.equal(scadList(text, 'support_points').length, 1);
   assert.equal(scadList(text, 'support_blockers').length, 1);
-  const blocker = scadList(text, 'support_blockers')[0];
 
   // The supports changed, exactly as `clever-support regrow` changes them from the edited file.
   const supportsAfter = fs.readFileSync(path.join(out, 'arches.supports.stl'));
@@ -268,25 +278,51 @@ async function main() {
   assert.equal(fs.readFileSync(path.join(twin, 'arches.scad'), 'utf8'), text, 'and the same .scad');
   assert.deepEqual(fs.readdirSync(out).sort(), filesBefore, 'the folder holds the same files (nothing else written)');
 
-  // check: every solid sound; what is bare is what the edits asked for (the omitted branch's
-  // overhang, the blocked underside).
-  let report;
-  try {
-    report = JSON.parse(run('check', '--model', path.join(out, 'arches.model.stl'), '--supports', path.join(out, 'arches.supports.stl'), '--json'));
-  } catch (e) {
-    report = JSON.parse(e.stdout);  // exit 4: some check failed; judged below
-  }
-  assert.equal(report.air_gap.ok, true);
-  assert.equal(report.penetration.bodies, 0);
-  assert.equal(report.grounding.ungrounded + report.grounding.buried_bottoms, 0);
-  assert.equal(report.closed.open + report.closed.inward, 0);
-  assert.equal(report.angles.steep, 0);
-  const sampling = first.sampling;
-  const asked = (p) => omittedTops.some((t) => Math.hypot(p[0] - t[0], p[1] - t[1]) < 2 * sampling) ||
-    (p[0] > blocker[0][0] - 2 * sampling && p[0] < blocker[1][0] + 2 * sampling &&
-     p[1] > blocker[0][1] - 2 * sampling && p[1] < blocker[1][1] + 2 * sampling);
-  for (const p of report.coverage.uncovered) assert.ok(asked(p), `overhang at ${p} is bare though no edit asked for it`);
-  say(`check: every solid sound; ${report.coverage.uncovered_area_mm2.toFixed(1)} mm² of overhang left bare where the edits asked`);
+  // `check` on the folder, as a user runs it, passes (exit 0: execFileSync throws on any other):
+  // the omitted branch's overhang and the blocked region are reported as left out on purpose.
+  const report = JSON.parse(run('check', out + '/', '--json'));
+  assert.equal(report.ok, true);
+  const leftOut = report.coverage.left_out_on_purpose;
+  assert.deepEqual(report.settings.omit_struts, [target.i]);
+  assert.equal(leftOut.regions, 1, 'the blocker is a region left out on purpose');
+  assert.ok(leftOut.omitted_struts.tips > 0 && leftOut.omitted_struts.points > 0,
+    `the omitted branch's tips and the overhang they held are reported (${JSON.stringify(leftOut.omitted_struts)})`);
+  assert.match(run('check', out + '/'), /left out on purpose by the user's edit/);
+  say(`check passes: ${leftOut.omitted_struts.area_mm2.toFixed(1)} mm² left out by omit_struts ` +
+      `(${leftOut.omitted_struts.tips} tips), ${leftOut.area_mm2.toFixed(1)} mm² in the blocked region`);
+
+  // That is the edit's doing: undo the omission (its ✕ in the panel) without regrowing, and the
+  // bare branch is judged again: red on the page, exit 4 from the command line.
+  await page.click('#edits li button');
+  await page.waitForFunction(() => window.csView.state().edits.omit_struts.length === 0);
+  const undone = await page.evaluate(() => window.csView.state().check);
+  assert.equal(undone.coverage_ok, false, 'with the omission undone, the branch\'s overhang is beyond reach');
+  assert.ok(undone.uncovered.length > 0, 'with places to mark in red');
+  const red = await page.evaluate(() => window.csView.markCount());
+  assert.ok(red.beyond >= undone.uncovered.length, `the places are drawn (${red.beyond} red marks)`);
+  assert.throws(() => run('check', out + '/'), (e) => e.status === 4, 'check fails on the folder');
+
+  // A solid fused into the model (a 2 mm cube planted in the arches' beam, in place of the
+  // supports) is marked magenta once the page next asks (here: removing the support point).
+  fs.writeFileSync(path.join(out, 'arches.supports.stl'), boxStl([-1, -1, 39.5], [1, 1, 41.5]));
+  await page.click('#edits ul:nth-of-type(1) li button');
+  await page.waitForFunction(() => window.csView.state().edits.support_points.length === 0);
+  const planted = await page.evaluate(() => window.csView.state().check);
+  assert.ok(planted.flagged.some((f) => /fused/.test(f.what)) && planted.flagged.some((f) => /too deep|penetration/.test(f.what)),
+    `the fused, penetrating solid is flagged (${JSON.stringify(planted.flagged.map((f) => f.what))})`);
+  assert.ok((await page.evaluate(() => window.csView.markCount())).flagged > 0, 'and marked in magenta');
+  assert.match(await page.$eval('#verdict', (e) => e.textContent), /solid problem\(s\) \(magenta\)/);
+
+  // A regrow that fails (the input moved away, as a hand edit of cs_input_path says) shows regrow's
+  // own error and leaves the outputs as they were.
+  fs.writeFileSync(scad, fs.readFileSync(scad, 'utf8').replace(/^cs_input_path = .*$/m, 'cs_input_path = "/nonexistent/arches.stl";'));
+  const supportsPlanted = fs.readFileSync(path.join(out, 'arches.supports.stl'));
+  await page.click('#regrow');
+  await page.waitForFunction(() => window.csView.regrows === 2, { timeout: 300000 });
+  assert.equal(await page.$eval('#stage', (e) => e.textContent), 'regrow failed (exit 3)');
+  assert.match(await page.$eval('#message', (e) => e.textContent), /error: \/nonexistent\/arches\.stl: cannot open/);
+  assert.ok(fs.readFileSync(path.join(out, 'arches.supports.stl')).equals(supportsPlanted), 'nothing was rewritten');
+  assert.deepEqual(errors, [], 'no errors in the page');
   say('PASSED');
   return finish(0);
 }

@@ -129,6 +129,31 @@ TEST(ScadEdit, BlockerKeepsEverySupportSolidOutAndTheRestPassesCheck) {
     EXPECT_EQ(report["edits"]["support_blockers"].size(), 1u);
     EXPECT_GT(report["edits"]["samples_blocked"].get<int>(), 0);
     EXPECT_NE(read_text(blocked.scad).find("support_blockers = [\n  [[-11, -6, -1], [-2.2, 6, 10.5]]"), std::string::npos);
+    // `check` on the run knows the blocker: the blocked part is left out on purpose, the rest passes.
+    auto judged = cs("check " + quote(blocked.out));
+    EXPECT_EQ(judged.code, 0) << judged.out;
+}
+
+// A blocker's side between two rows of samples: on the arches' sloping underside, the row beside
+// the box, whose tips would graze it, is moved out just clear of it, so the overhang beside the box
+// keeps its support and `check` on the run (the box left out on purpose) passes. Dropped instead
+// (as before 2026-11-26), it left 2.7 mm2 beside the box beyond reach: the next row stands 2.4 mm off.
+TEST(ScadEdit, OverhangBesideABlockerKeepsItsSupport) {
+    const Box3 blocker{{-28.15, -6.84, -1}, {-19.38, -5.35, 39.5}};
+    TempDir dir;
+    const std::string out = dir / "arches";
+    auto r = cs(quote(source_dir() + "/examples/models/arches.stl") +
+                " --orient keep --no-timings -q --support-blocker=-28.15,-6.84,-1,-19.38,-5.35,39.5 --out " + quote(out));
+    ASSERT_EQ(r.code, 0) << r.out;
+    Mesh supports = read_mesh(out + "/arches.supports.stl");
+    EXPECT_FALSE(mesh_enters_box(supports, blocker));
+    auto judged = cs("check " + quote(out));
+    EXPECT_EQ(judged.code, 0) << judged.out;
+    EXPECT_NE(judged.out.find("in 1 blocked region: left out on purpose"), std::string::npos) << judged.out;
+    // The moved row: tips whose tops stand within a tip's width of the box's side (y = -5.35).
+    int beside = 0;
+    for (const auto& v : supports.vertices) beside += v.z > 20 && v.x > -28 && v.x < -19.5 && v.y > -5.35 && v.y < -4.3;
+    EXPECT_GT(beside, 0) << "a tip stands just beside the box";
 }
 
 // A triangular prism whose underside slopes at 45 degrees: gentler than the 50 degree critical
@@ -221,6 +246,26 @@ TEST(ScadEdit, OmittedStrutGoesWithItsBranchAndTheRestIsSound) {
     EXPECT_FALSE(c.coverage_ok()) << "the branch's overhang is left without support";
     EXPECT_EQ(c.open_bodies + c.inward_bodies + c.penetrating_bodies + c.ungrounded_bodies + c.steep_bodies, 0u)
         << c.summary();
+    // The regrown file still lists the branch's leaves (OpenSCAD brings their tips back when the
+    // omission is undone), so `check` on the run knows what the omission left bare: it passes,
+    // saying what it left out and why.
+    const std::string regrown = read_text(t.scad);
+    EXPECT_EQ(parse_scad_values(regrown, t.scad).at("cs_leaves").value.size(), values.at("cs_leaves").value.size());
+    auto judged = cs("check " + quote(t.out));
+    EXPECT_EQ(judged.code, 0) << judged.out;
+    EXPECT_NE(judged.out.find("omit_struts [" + std::to_string(chosen) + "] took out"), std::string::npos) << judged.out;
+    EXPECT_NE(judged.out.find("left out on purpose by the user's edit"), std::string::npos) << judged.out;
+    auto as_json = cs("check --json " + quote(t.out));
+    ASSERT_EQ(as_json.code, 0) << as_json.out;
+    auto j = nlohmann::json::parse(as_json.out);
+    EXPECT_EQ(j["coverage"]["left_out_on_purpose"]["omitted_struts"]["tips"].get<int>(), branch.second);
+    EXPECT_GT(j["coverage"]["left_out_on_purpose"]["omitted_struts"]["points"].get<int>(), 0);
+    EXPECT_EQ(j["settings"]["omit_struts"], nlohmann::json::array({chosen}));
+    // Undo the omission in the file but not in the supports: the bare overhang is judged again.
+    write_text(t.scad, with_line(regrown, "omit_struts =", "omit_struts = [];"));
+    auto undone = cs("check " + quote(t.out));
+    EXPECT_EQ(undone.code, 4) << undone.out;
+    EXPECT_NE(undone.out.find("FAIL coverage"), std::string::npos) << undone.out;
 }
 
 TEST(ScadEdit, RegrowOfAnUneditedFileReproducesEveryOutput) {
@@ -281,6 +326,12 @@ TEST(ScadEdit, BrokenEditsNameTheLine) {
         EXPECT_NE(r.out.find(where), std::string::npos) << "expected " << where << " in: " << r.out;
         EXPECT_NE(r.out.find(c.phrase), std::string::npos) << r.out;
     }
+    // A value out of its range (a parameter error, exit 2) names its line too.
+    write_text(t.scad, with_line(text, "d_max =", "d_max = 0.5;"));
+    auto r = cs("regrow -q " + quote(t.scad));
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_NE(r.out.find("tee.scad:" + std::to_string(line_number_of(text, "d_max =")) + ": d_max = 0.5 is out of range"),
+              std::string::npos) << r.out;
 }
 
 TEST(ScadEdit, AStrayLineIsAnErrorAtItsOwnLine) {

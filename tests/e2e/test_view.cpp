@@ -138,3 +138,27 @@ TEST(ViewFolder, FindsTheOneScadOfAnOutputFolderOrSaysWhatToGive) {
     EXPECT_EQ(r.code, 3) << r.out;
     EXPECT_NE(r.out.find("Give an output folder"), std::string::npos) << r.out;
 }
+
+// The page's check judges a folder as `clever-support check FOLDER` does: after omitting a strut
+// and regrowing, the overhang the omitted tips held is left out on purpose and both pass; with
+// the omission undone in the file only, both fail on that overhang.
+TEST(ViewCheck, JudgesTheFolderAsCheckDoesWithTheUsersOmissions) {
+    Arches a;
+    std::string t = a.edit(a.text, {{"op", "toggle_strut"}, {"strut", 102}});
+    std::ofstream(a.scad, std::ios::binary) << t;
+    auto regrow = run(quote(cli()) + " regrow -q " + quote(a.scad));
+    ASSERT_EQ(regrow.code, 0) << regrow.out;
+    const ViewFolder f = find_view_folder(a.scad);
+    t = read_all(a.scad);
+    nlohmann::json c = view_check(f, t);
+    EXPECT_EQ(c["ok"], true) << c["summary"];
+    EXPECT_GT(c["left_out_area_mm2"].get<double>(), 0) << c["summary"];
+    EXPECT_NE(c["summary"].get<std::string>().find("left out on purpose by the user's edit"), std::string::npos);
+    EXPECT_EQ(run(quote(cli()) + " check " + quote(f.folder)).code, 0);
+    const std::string undone = a.edit(t, {{"op", "toggle_strut"}, {"strut", 102}});
+    std::ofstream(a.scad, std::ios::binary) << undone;
+    c = view_check(f, undone);
+    EXPECT_EQ(c["coverage_ok"], false) << c["summary"];
+    EXPECT_FALSE(c["uncovered"].empty());
+    EXPECT_EQ(run(quote(cli()) + " check " + quote(f.folder)).code, 4);
+}

@@ -2,9 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "check/check.hpp"
 #include "overhang/overhang.hpp"
+#include "pipeline/pipeline.hpp"
 #include "query/model_query.hpp"
 #include "shapes.hpp"
 #include "struts/struts.hpp"
@@ -462,4 +464,126 @@ TEST(CheckPlanted, JudgeFindsTheLowestPointOfAHangingCone) {
     EXPECT_EQ(r.face_points, 0u) << r.summary();
     EXPECT_EQ(r.lowest_points, 1u) << r.summary();
     EXPECT_FALSE(r.coverage_ok());
+}
+
+// ---- Struts the user omitted (omit_struts): what their tips held is left out on purpose, counted
+// and reported, and no more than that. The table's tree as a .scad records it, with one strut well
+// inside the top omitted: prune_struts takes out its branch, as regrow does.
+namespace {
+
+struct OmittedBranch {
+    Params p;
+    Mesh model = cs::test::table_shape();
+    RecordedTree recorded;
+    int strut = -1;                 // the omitted strut
+    std::vector<Vec3> branch_tips;  // the tops of the tips its branch carried
+    std::vector<Body> bodies;       // the supports without that branch
+
+    OmittedBranch() {
+        ModelQuery q(model);
+        const SupportTree grown = grow_tree(q, sample_overhangs(model, overhang_options(p)).samples, p);
+        for (const auto& s : grown.struts) recorded.struts.push_back({s.top, s.bottom});
+        for (size_t v = 0; v < grown.nodes.size(); ++v)
+            if (grown.nodes[v].kind == NodeKind::Leaf) recorded.tips.push_back({static_cast<int>(v), grown.nodes[v].tip});
+        for (const auto& pl : grown.pillars) recorded.pillar_tops.push_back(pl.top);
+        for (int e = 0; e < static_cast<int>(grown.struts.size()) && strut < 0; ++e) {
+            SupportTree pruned = prune_struts(grown, {e});
+            std::vector<Vec3> tips;
+            bool inside = true;
+            for (size_t v = 0; v < grown.nodes.size(); ++v)
+                if (grown.nodes[v].kind == NodeKind::Leaf && pruned.nodes[v].kind == NodeKind::Dropped) {
+                    tips.push_back(grown.nodes[v].tip);
+                    inside = inside && std::abs(tips.back().x) < 14 && std::abs(tips.back().y) < 9;
+                }
+            if (inside && tips.size() >= 2 && tips.size() <= 6)
+                strut = e, branch_tips = tips, bodies = build_bodies(size_struts(std::move(pruned), p), p);
+        }
+    }
+    CheckResult check(const std::vector<Body>& b, const std::vector<int>& omitted, bool with_tree = true) const {
+        CheckOptions o;
+        if (with_tree) o.tree = recorded;
+        o.omitted_struts = omitted;
+        return check_supports(model, bodies_mesh(b, p.wall_thickness), p, o);
+    }
+    double nearest_branch_tip(const Vec3& x) const {
+        double d = INFINITY;
+        for (const auto& t : branch_tips) d = std::min(d, horizontal_distance(x, t));
+        return d;
+    }
+};
+
+}  // namespace
+
+TEST(CheckOmitted, AnOmittedBranchsOverhangIsLeftOutOnPurposeAndSaidSo) {
+    OmittedBranch t;
+    ASSERT_GE(t.strut, 0) << "no strut inside the table top carries 2 to 6 tips";
+    // Without the record of the edit the bare overhang fails, as any missing tip does.
+    CheckResult bare = t.check(t.bodies, {}, /*with_tree=*/false);
+    EXPECT_FALSE(bare.coverage_ok()) << bare.summary();
+    EXPECT_EQ(t.check(t.bodies, {}).uncovered_area, bare.uncovered_area) << "a tree alone leaves nothing out";
+    // With it: everything passes, the omission's overhang counted as left out on purpose.
+    CheckResult r = t.check(t.bodies, {t.strut});
+    EXPECT_TRUE(r.ok()) << r.summary();
+    EXPECT_EQ(r.omitted_struts, 1u);
+    EXPECT_EQ(r.omitted_tips, t.branch_tips.size());
+    EXPECT_GT(r.omitted, 0u);
+    EXPECT_GT(r.omitted_area, 0);
+    EXPECT_EQ(r.covered + r.exempt + r.left_out + r.omitted, r.overhang_points);
+    EXPECT_NE(r.summary().find("held (omit_struts): left out on purpose by the user's edit"), std::string::npos) << r.summary();
+    auto j = nlohmann::json::parse(r.json());
+    EXPECT_EQ(j["coverage"]["left_out_on_purpose"]["omitted_struts"]["tips"], t.branch_tips.size());
+    EXPECT_EQ(j["coverage"]["left_out_on_purpose"]["omitted_struts"]["points"], r.omitted);
+    // No wider than the omitted tips' reach: each stands for at most a disc of that radius.
+    EXPECT_LE(r.omitted_area, t.branch_tips.size() * M_PI * r.reach * r.reach);
+}
+
+TEST(CheckOmitted, OverhangNoOmittedTipHeldIsStillJudged) {
+    OmittedBranch t;
+    ASSERT_GE(t.strut, 0);
+    // A tip far from the branch goes missing too, with no edit asking for it: that fails.
+    const Body* far = nullptr;
+    for (const auto& b : t.bodies)
+        if (b.kind == BodyKind::Tip && t.nearest_branch_tip(b.top) > 3 * t.p.sampling_distance && std::abs(b.top.x) < 17 &&
+            std::abs(b.top.y) < 12)
+            far = &b;
+    ASSERT_NE(far, nullptr);
+    const Vec3 gone = far->top;
+    std::vector<Body> fewer;
+    for (const auto& b : t.bodies)
+        if (!(b.kind == BodyKind::Tip && b.top == gone)) fewer.push_back(b);
+    CheckResult r = t.check(fewer, {t.strut});
+    EXPECT_FALSE(r.coverage_ok()) << r.summary();
+    EXPECT_LT(horizontal_distance(r.largest_gap_at, gone), t.p.sampling_distance) << r.summary();
+    ASSERT_FALSE(r.uncovered.empty());
+    for (const auto& u : r.uncovered) EXPECT_GT(t.nearest_branch_tip(u), r.reach) << "uncovered at " << format_place(u);
+    // Omitting another strut, a leaf's far from the bare branch, excuses nothing of the branch.
+    int other = -1;
+    for (int e = 0; e < static_cast<int>(t.recorded.struts.size()) && other < 0; ++e)
+        for (const auto& [leaf, top] : t.recorded.tips)
+            if (leaf == t.recorded.struts[e][0] && t.nearest_branch_tip(top) > 3 * t.p.sampling_distance) other = e;
+    ASSERT_GE(other, 0);
+    CheckResult o = t.check(t.bodies, {other});
+    EXPECT_EQ(o.omitted_tips, 1u);
+    EXPECT_FALSE(o.coverage_ok()) << o.summary();
+}
+
+// Pillars are numbered after the struts (omit_struts takes both): an omitted pillar's tip is left
+// out as a strut's is.
+TEST(CheckOmitted, AnOmittedPillarIsNumberedAfterTheStruts) {
+    Table t;
+    const Vec3 gone = t.tip_near(10, 7).top;
+    auto bodies = t.without_tips([&](const Vec3& top) { return top == gone; });
+    RecordedTree recorded;
+    recorded.struts = {{0, 1}};  // one strut, so the pillar is number 1
+    recorded.pillar_tops = {gone};
+    CheckOptions o;
+    o.tree = recorded;
+    o.omitted_struts = {1};
+    CheckResult r = check_supports(t.model, bodies_mesh(bodies, t.p.wall_thickness), t.p, o);
+    EXPECT_TRUE(r.ok()) << r.summary();
+    EXPECT_EQ(r.omitted_tips, 1u);
+    o.omitted_struts = {0};  // the strut, which carries no tip: nothing left out
+    r = check_supports(t.model, bodies_mesh(bodies, t.p.wall_thickness), t.p, o);
+    EXPECT_FALSE(r.coverage_ok()) << r.summary();
+    EXPECT_EQ(r.omitted_tips, 0u);
 }

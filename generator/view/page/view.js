@@ -208,7 +208,8 @@ function showPanel() {
   if (check.error) { verdict.className = 'fail'; verdict.textContent = check.error; }
   else if (check.summary !== undefined) {
     verdict.className = check.ok ? 'ok' : 'fail';
-    verdict.textContent = check.ok ? 'passes: every overhang within reach, every solid sound'
+    const leftOut = check.left_out_area_mm2 > 0 ? ` (${fmt(check.left_out_area_mm2)} mm² left out on purpose by your edits)` : '';
+    verdict.textContent = check.ok ? `passes: every overhang within reach, every solid sound${leftOut}`
       : (check.coverage_ok ? '' : `${fmt(check.uncovered_area_mm2)} mm² of overhang beyond reach (red). `) +
         (check.flagged.length ? `${check.flagged.length} solid problem(s) (magenta).` : '');
     $('checksummary').textContent = check.summary;
