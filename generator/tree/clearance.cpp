@@ -7,6 +7,7 @@
 #include "core/rules.hpp"
 #include "query/model_query.hpp"
 #include "tree/candidates.hpp"
+#include "tree/placement.hpp"
 #include "tree/tuning.hpp"
 
 namespace cs {
@@ -58,6 +59,13 @@ bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec
         known = std::sqrt(d2), known_at = q;
     }
     return true;
+}
+
+bool contact_tip_is_clear(const ModelQuery& model, const Params& p, const Vec3& node, const Vec3& contact, double width) {
+    const Vec3 bottom = contact_under_tip(model, contact, node.z, p) + Vec3{0, 0, p.gap};
+    if (node.z - bottom.z <= kShortestContactTip) return true;
+    const TipEnds t = contact_tip(p, bottom, node, width);
+    return prism_is_clear(model, t.bottom, t.bottom_width, t.top, t.top_width);
 }
 
 bool enters_support_blocker(const Params& p, const std::vector<Box3>& support_blockers, const Vec3& a, const Vec3& b,

@@ -23,6 +23,15 @@ struct ConeFan;
 bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance,
                     bool onto_model = false, double joint_reach = 0);
 
+// Does the upside-down tip under a contact node `node` miss the model, as the struts stage will
+// build it (core/rules.hpp contact_tip): a square taper from tip_diameter a gap above where it
+// stands (contact_under_tip from `contact`, tree/placement.hpp) up to `node`, as wide there as the
+// strut ending at it (`width`)? The strut's own clearance stops at its foot; the tip widens into
+// that width within a tip's length of the model, so a step of the model beside the contact (a
+// ledge in front of a wall) can cut the tip's upper part while strut and contact both clear it.
+// A node too close to the model for a tip (kShortestContactTip) has none: true.
+bool contact_tip_is_clear(const ModelQuery& model, const Params& p, const Vec3& node, const Vec3& contact, double width);
+
 // Does a strut from a down to b (width wb at b), reaching half a layer into its joint, or its
 // foot on the bed enter one of the user's support blockers (placed-model coordinates)?
 bool enters_support_blocker(const Params& p, const std::vector<Box3>& support_blockers, const Vec3& a, const Vec3& b,

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <utility>
 
 #include "query/model_query.hpp"
 
@@ -72,6 +73,9 @@ bool keeps_clearance_beside(const ModelQuery& model, const Vec3& top, const Para
 
 // How much lower than a gap under the sample a tip's top may sit and still count as a contact.
 double allowed_drop(const Params& p) { return contact_tolerance(p) - p.gap - 0.05; }
+
+// The same for a square whose slope runs along its diagonal: its corner is half a diagonal out.
+double diagonal_drop(const Params& p) { return std::sqrt(2.0) * allowed_drop(p); }
 
 // A foot bears on the model near its axis, not at a corner: on a slope, a foot a gap above its
 // highest corner would hang over the model everywhere else (and `check` would not see it standing).
@@ -224,25 +228,39 @@ std::optional<Vec3> place_tip_top(const ModelQuery& model, const Vec3& sample, c
     // Rays start a tip's length below the gap, under the overhang.
     const double start = sample.z - p.gap - p.tip_length;
     bool any_ceiling = false;
-    std::optional<Vec3> nearest_fit;  // taken when no top that fits keeps the side clearance
-    for (const auto& off : nearby_offsets()) {
+    // The top at `off` from the sample, if its square keeps the gap within a contact's tolerance
+    // and no corner of it is in the model; with the ceiling's height over its centre.
+    auto fit_at = [&](const Vec3& off, double allowed) -> std::optional<std::pair<Vec3, double>> {
         const Vec3 c{sample.x + off.x, sample.y + off.y, start};
         auto ceiling = ceiling_above(model, square_points(c, p.tip_diameter), sample.z);
         any_ceiling = any_ceiling || ceiling;
-        if (!ceiling || ceiling->drop > allowed_drop(p)) continue;
+        if (!ceiling || ceiling->drop > allowed) return std::nullopt;
         Vec3 top{c.x, c.y, sample.z - p.gap - ceiling->drop};
         // A corner of the top in the model (the overhang's edge turning down beside the sample)
         // is no place for a tip.
-        if (!square_is_clear(model, top, p.tip_diameter)) continue;
+        if (!square_is_clear(model, top, p.tip_diameter)) return std::nullopt;
+        return std::pair{top, ceiling->over_centre};
+    };
+    std::optional<Vec3> nearest_fit;  // taken when no top that fits keeps the side clearance
+    for (const auto& off : nearby_offsets()) {
+        const auto fit = fit_at(off, allowed_drop(p));
+        if (!fit) continue;
+        const auto& [top, over_centre] = *fit;
         // A top moved off a wall must still touch what its sample hangs from: beside a lowest
         // point or under a curve the ceiling rises away from the sample, and a top left at the
         // sample's height would hang below it in air.
         const bool moved = nearest_fit.has_value();
         if (!moved) nearest_fit = top;
-        if (keeps_clearance_beside(model, top, p) && (!moved || ceiling->over_centre - top.z <= p.gap + kLevel))
-            return top;
+        if (keeps_clearance_beside(model, top, p) && (!moved || over_centre - top.z <= p.gap + kLevel)) return top;
     }
     if (nearest_fit) return nearest_fit;
+    // A sample on the very edge of a slope that runs diagonally to the tip's square (the upper
+    // edge of a twisted blade): uphill is past the edge, and the square below dips its far corner
+    // further than allowed_drop, which allows for a slope along a side of the square. The corner
+    // is half a diagonal out: the top may drop that much more, there only. Its nearest corner
+    // still keeps the gap, and it stays as near the sample as any other top.
+    for (const auto& off : nearby_offsets())
+        if (const auto fit = fit_at(off, diagonal_drop(p))) return fit->first;
     // Nothing above at all (a point given in open air): no gap to keep but the sample's own.
     if (!any_ceiling) return sample - Vec3{0, 0, p.gap};
     return std::nullopt;

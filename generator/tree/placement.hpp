@@ -45,6 +45,9 @@ PillarPlacement fit_pillar(const ModelQuery& model, const Vec3& sample, const Pa
 // Of the tops that fit, the nearest that keeps tip_side_clearance from a wall beside it in its
 // own layer, with the ceiling still a gap above it, wins (a tip against a wall prints fused to
 // it); the nearest that fits when none does.
+// Where no top fits so, a square under a slope running diagonally to it (its downhill corner half a
+// diagonal out, not half a side) may drop that much further: a sample at the upper edge of such a
+// slope (a twisted blade), where uphill is past the edge, still gets its tip.
 // nullopt where no square near the sample keeps the gap within what a contact allows (a sample
 // on a knife edge or in a crevice narrower than a tip): a tip there would be built into the model.
 std::optional<Vec3> place_tip_top(const ModelQuery& model, const Vec3& sample, const Params& p);

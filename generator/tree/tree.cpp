@@ -251,7 +251,8 @@ private:
         const bool fits = !enters_support_blocker(p_, support_blockers_, at, to, bottom_width(top, to)) &&
                           strut_is_clear(model_, at, top_width(top, to), to, bottom_width(top, to), p_.model_clearance,
                                          false, joint_overlap(p_)) &&
-                          can_escape(to, merged_width(p_, {books_[below].width, bottom_width(top, to)}));
+                          can_escape(to, merged_width(p_, {books_[below].width, bottom_width(top, to)})) &&
+                          contact_tip_fits(top, below);
         if (!fits) {
             books_[top].width = was_width, books_[top].run = was_run;
             return false;
@@ -270,7 +271,8 @@ private:
         const double was_width = books_[id].width, was_run = books_[id].run;
         books_[id].width = merged_width(p_, {books_[id].width, bottom_width(top, a)});
         books_[id].run = 0;  // a branch point: a new run starts here
-        if (!clear(id, to) || !can_escape(to, merged_width(p_, {books_[below].width, bottom_width(id, to)}))) {
+        if (!clear(id, to) || !can_escape(to, merged_width(p_, {books_[below].width, bottom_width(id, to)})) ||
+            !contact_tip_fits(id, below)) {
             books_[id].width = was_width, books_[id].run = was_run;
             return false;
         }
@@ -282,6 +284,12 @@ private:
         books_[below].width = merged_width(p_, {books_[below].width, bottom_width(id, to)});
         ++t_.stats.merges;
         return true;
+    }
+
+    // A strut that comes out wider onto a contact node already made: the contact's tip widens with it.
+    bool contact_tip_fits(int from, int below) const {
+        const Node& n = t_.nodes[below];
+        return n.kind != NodeKind::ModelContact || contact_tip_is_clear(model_, p_, n.p, n.contact, bottom_width(from, n.p));
     }
 
     // Leaves about to merge lean first (GrowOptions::lean_merging_leaves): they meet a layer or two
@@ -321,6 +329,8 @@ private:
     bool clear(int from, const Candidate& c, double clearance = -1) const {
         if (c.type == Target::Model && sweep_meets_boxes(c.point, c.contact, bottom_width(from, c.point), 0, support_blockers_))
             return false;  // its contact tip would stand in a blocker
+        if (c.type == Target::Model && !contact_tip_is_clear(model_, p_, c.point, c.contact, bottom_width(from, c.point)))
+            return false;  // its contact tip, widening into the strut, would reach into the model
         return clear(from, c.point, clearance, c.type == Target::Model);  // a steep face: no relief
     }
     void support(int id) {

@@ -183,6 +183,31 @@ TEST(PlaceTipTop, InASlotTooNarrowForTheClearanceTheTipStillGoes) {
     EXPECT_TRUE(square_is_clear(q, *placed, p.tip_diameter));
 }
 
+TEST(PlaceTipTop, AtTheUpperEdgeOfADiagonalSlopeATipStillGoes) {
+    // The upper edge of a blade's underside (the propeller in bench/validation, issue 32): a
+    // 2 mm plate whose underside rises 35 degrees along x and y together (the worst case for a
+    // square) and ends 0.05 mm uphill of the sample. Straight below, the tip's square dips its
+    // downhill corner more than a slope along a side of the square would; uphill is past the
+    // edge, with nothing above. The tip still goes there, every corner keeping the gap, rather
+    // than leaving the sample unsupported.
+    Params p;
+    const double s = std::tan(35 * M_PI / 180) / std::sqrt(2.0);
+    auto under = [&](double x, double y) { return Vec3{x, y, 8.5 + s * (x + y)}; };
+    Mesh m;
+    m.vertices = {under(-5, -5), under(5.05, -5), under(-5, 5.05)};
+    for (int i = 0; i < 3; ++i) m.vertices.push_back(m.vertices[i] + Vec3{0, 0, 2});
+    m.faces = {{0, 2, 1}, {3, 4, 5}, {0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {2, 0, 3}, {2, 3, 5}};
+    ModelQuery q(m);
+    const Vec3 sample{0, 0, 8.5};
+    ASSERT_FALSE(q.inside(sample - Vec3{0, 0, 0.1}));
+    ASSERT_TRUE(q.inside(sample + Vec3{0, 0, 0.1}));
+    const auto placed = place_tip_top(q, sample, p);
+    ASSERT_TRUE(placed);
+    EXPECT_NEAR(nearest_from_corners(q, *placed, p.tip_diameter, 1), p.gap, 1e-9) << "its nearest corner keeps the gap";
+    EXPECT_TRUE(square_is_clear(q, *placed, p.tip_diameter));
+    EXPECT_LE(horizontal_distance(*placed, sample), 0.5 + 1e-9) << "stays near its sample";
+}
+
 TEST(ContactUnderTip, FootClearsTheModelOnASlope) {
     // A 30-degree slope rising along x and y together (the worst case for a square): the tip's
     // foot keeps air under every corner.

@@ -14,6 +14,7 @@
 #include "query/model_query.hpp"
 #include "shapes.hpp"
 #include "support.hpp"
+#include "tree/clearance.hpp"
 #include "tree/slicer_cost.hpp"
 #include "tree/tree.hpp"
 
@@ -685,4 +686,23 @@ TEST(SlicerCost, CountsIslandsOutlineAndTravelPerLayer) {
     w.nodes = {{{0, 0, 1}, NodeKind::Bend}, {{0, 0, 0}, NodeKind::Bed}};
     w.struts = {{0, 1}};
     EXPECT_NEAR(estimate_slicer_cost(w, {3.0}, p).outline_mm, 5 * 4 * 3.0, 1e-9);
+}
+
+// A contact tip is a taper from tip_diameter at the contact up to the width of the strut ending
+// on it. A ledge in front of a step (a seat's front lip under a roof, shelter_roof in
+// bench/validation): a wide strut landing on the ledge right in front of the step clears the
+// step, its contact keeps the gap, but the tip widening into the strut reaches into the step.
+// The sweep asks contact_tip_is_clear of every strut onto the model (Sweep::clear).
+TEST(TreeHelpers, AContactTipInFrontOfAStepMustClearIt) {
+    Params p;
+    Mesh m = cs::test::box({-10, -10, 0}, {10, 0, 9});  // the ledge
+    append(m, cs::test::box({-10, 0, 0}, {10, 10, 10}));  // the step, 1 mm above it
+    ModelQuery q(m);
+    const double w = 3.4;  // a strut sized by the strength rule
+    const Vec3 node{0, -1.2, 9 + p.gap + p.tip_length}, contact{0, -1.2, 9};
+    EXPECT_TRUE(strut_is_clear(q, node + Vec3{0, 0, 20}, w, node, w, p.gap, /*onto_model=*/true, joint_overlap(p)));
+    EXPECT_FALSE(contact_tip_is_clear(q, p, node, contact, w));
+    // A thin strut's tip there, or the wide one 1 mm further out on the ledge, clears it.
+    EXPECT_TRUE(contact_tip_is_clear(q, p, node, contact, p.d_min));
+    EXPECT_TRUE(contact_tip_is_clear(q, p, node - Vec3{0, 1, 0}, contact - Vec3{0, 1, 0}, w));
 }
