@@ -8,6 +8,7 @@
 // from the links when the sweep ends, in the order they were made.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <optional>
 #include <utility>
@@ -33,7 +34,12 @@ struct SweepNode {
     double run = 0;        // bends: length of the unbranched run above them
     int retries = 0;       // how often the node was sent back by undo_joins
     std::vector<int> banned;         // nodes it may not join again
-    bool alone = false;    // released from a dead end: merges with no one (its bends inherit it)
+    bool alone = false;    // released from a dead end twice: merges with no one (its bends inherit it)
+    // Released from a dead end once: it merges only within its pool (the leaves released from that
+    // dead end and what they grow into; 0: every node never released) and only into nodes
+    // thinner than width_cap (the dead end's width). Merges and bends inherit both.
+    int pool = 0;
+    double width_cap = INFINITY;
     std::vector<Vec3> failed_bends;  // bends below it that led to dead ends
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <map>
 #include <optional>
 #include <queue>
 #include <tuple>
@@ -31,7 +32,7 @@ double grid_cell(const Params& p) { return std::max(2.0 * p.sampling_distance, 1
 class Sweep : SweepBooks {
 public:
     Sweep(const ModelQuery& model, const Params& p, const std::vector<Box3>& support_blockers, GrowOptions options = {})
-        : SweepBooks(model, p, support_blockers), options_(options), cx_{model, p, fan_, tree()}, active_nodes_(grid_cell(p)) {}
+        : SweepBooks(model, p, support_blockers), options_(options), cx_{model, p, fan_, tree()} {}
 
     SupportTree hang_only(const std::vector<Sample>& samples) {
         hang_leaves(samples);
@@ -98,12 +99,12 @@ private:
 
     void activate(int id) {
         books_[id].active = true;
-        if (!books_[id].alone) active_nodes_.insert(id, t_.nodes[id].p);
+        if (!books_[id].alone) pool(id).insert(id, t_.nodes[id].p);
         heap_.push({t_.nodes[id].p.z, -id});
     }
     void retire(int id) {
         books_[id].active = false;
-        if (!books_[id].alone) active_nodes_.remove(id, t_.nodes[id].p);
+        if (!books_[id].alone) pool(id).remove(id, t_.nodes[id].p);
     }
     // Each sample's leaf (its tip placed), pillar, or the reason it has neither; run() starts from these.
     void hang_leaves(const std::vector<Sample>& samples) {
@@ -182,7 +183,7 @@ private:
         bool more = true;
         for (std::size_t batch = kTreeTuning.merge_batch; more; batch *= 2) {
             std::vector<Candidate> now;
-            collect_merges(cx_, active_nodes_, t_.nodes, id, books_[id].banned, bound, after ? &*after : nullptr, batch, now);
+            collect_merges(cx_, pool(id), t_.nodes, id, books_[id].banned, bound, after ? &*after : nullptr, batch, now);
             more = now.size() == batch;
             if (more) after = *std::max_element(now.begin(), now.end(), cost_less);
             // Landings up to the batch's dearest merge go now; dearer ones wait for the next batch.
@@ -201,6 +202,7 @@ private:
     // Takes the first candidate whose strut (and what it joins) fits; false when none does.
     bool take_first_clear(int id, const std::vector<Candidate>& cands) {
         for (const auto& c : cands) {
+            if (too_wide_for_pool(id, c)) continue;
             if (c.type == Target::Merge && options_.lean_merging_leaves && merge_leaning(id, c)) return true;
             if (const int u = strut_alongside(id, c); u >= 0) {
                 if (join_strut_alongside(id, u)) return true;
@@ -217,6 +219,15 @@ private:
             return true;
         }
         return false;
+    }
+
+    // Would the node that merge `c` makes be as wide as the dead end node `id`'s pool came out of
+    // (SweepNode::width_cap)? Never for the nodes never released.
+    bool too_wide_for_pool(int id, const Candidate& c) const {
+        if (!std::isfinite(books_[id].width_cap) || (c.type != Target::Merge && c.type != Target::InCone)) return false;
+        const double w = c.type == Target::Merge ? merged_estimate(id, c)
+                                                 : merged_width(p_, {books_[c.other].width, bottom_width(id, c.point)});
+        return w >= books_[id].width_cap;
     }
 
     // Would joining node `id` straight into an active node (InCone) lay its strut along a strut
@@ -320,9 +331,9 @@ private:
     }
     void move_node(int v, const Vec3& to) {
         const bool listed = books_[v].active && !books_[v].alone;
-        if (listed) active_nodes_.remove(v, t_.nodes[v].p);
+        if (listed) pool(v).remove(v, t_.nodes[v].p);
         t_.nodes[v].p = to;
-        if (listed) active_nodes_.insert(v, to);
+        if (listed) pool(v).insert(v, to);
     }
 
     using SweepBooks::clear;
@@ -421,11 +432,18 @@ private:
         return true;
     }
 
-    // Takes apart the dead end `id` and everything joined into it. Each leaf above that has not
-    // gone down alone yet starts again from its own place, thin, alone: it merges with no one and
-    // no one with it, so a dead end costs at most one more descent per leaf, and only the leaves
+    // Takes apart the dead end `id` and everything joined into it. Each leaf above starts again
+    // from its own place, thin. The first time, it merges again, but only with the other leaves
+    // released from this dead end and only into nodes thinner than the dead end: a trunk too wide
+    // to land where its leaves can (a shelf arm over a 45 degree brace: a 3 mm trunk finds no
+    // clear landing on the brace, 1 mm leaves do) need not cost every leaf an island of its own
+    // all the way down (there, 33 leaves each 9 mm alone, half the part's island-layers). A leaf
+    // from such a second try that ends in a dead end again goes alone: it merges with no one and
+    // no one with it. So a dead end costs at most two more descents per leaf, and only the leaves
     // that find no way down even alone are lost.
     void release_branches(int id) {
+        const int released_pool = id + 1;
+        const double dead_end_width = books_[id].width;
         std::vector<int> stack{id};
         std::size_t lost = 0;
         while (!stack.empty()) {
@@ -438,7 +456,10 @@ private:
             }
             books_[v].up.clear();
             if (t_.nodes[v].kind == NodeKind::Leaf && !books_[v].alone) {
-                restart_alone(v);
+                if (books_[v].pool == 0)
+                    restart_in_pool(v, released_pool, dead_end_width);
+                else
+                    restart_alone(v);
                 continue;
             }
             if (t_.nodes[v].kind == NodeKind::Leaf) ++lost;
@@ -453,6 +474,15 @@ private:
         books_[leaf].run = 0;
         activate(leaf);
     }
+    void restart_in_pool(int leaf, int pool, double width_cap) {
+        books_[leaf].pool = pool;
+        books_[leaf].width_cap = width_cap;
+        books_[leaf].width = p_.d_min;
+        books_[leaf].run = 0;
+        activate(leaf);
+    }
+    // The active nodes that node `id` may merge with: those of its pool (SweepNode::pool).
+    ActiveNodes& pool(int id) { return pools_.try_emplace(books_[id].pool, grid_cell(p_)).first->second; }
 
     double merged_estimate(int id, const Candidate& c) const {
         return merged_width(p_, {bottom_width(id, c.point), bottom_width(c.other, c.point)});
@@ -472,6 +502,8 @@ private:
                 retire(c.other);
                 int s = add_node(c.point, NodeKind::Merge, {}, w);
                 books_[s].retries = std::max(books_[id].retries, books_[c.other].retries);
+                books_[s].pool = books_[id].pool;  // partners come from one pool
+                books_[s].width_cap = books_[id].width_cap;
                 connect(id, s);
                 connect(c.other, s);
                 activate(s);
@@ -524,6 +556,8 @@ private:
         retire(id);
         int c = add_node(best, NodeKind::Bend, {}, bottom_width(id, best));
         books_[c].alone = books_[id].alone;
+        books_[c].pool = books_[id].pool;
+        books_[c].width_cap = books_[id].width_cap;
         books_[c].run = books_[id].run + distance(a, best);
         books_[c].retries = books_[id].retries;
         connect(id, c);
@@ -538,13 +572,19 @@ private:
         const Vec3 mid = (a + to) * 0.5;
         const double reach = 0.5 * horizontal_distance(a, to) + grid_cell(p_);
         bool hit = false;
-        active_nodes_.visit_near(
-            mid,
-            [&](int q) {
-                const Vec3& b = t_.nodes[q].p;
-                hit = hit || (q != id && b.z < a.z && b.z > to.z && point_segment_distance(b, a, to) < joint_overlap(p_));
-            },
-            [&](double ring) { return hit || ring > reach; });
+        auto look_in = [&](int k) {
+            const auto listed = pools_.find(k);
+            if (listed == pools_.end()) return;
+            listed->second.visit_near(
+                mid,
+                [&](int q) {
+                    const Vec3& b = t_.nodes[q].p;
+                    hit = hit || (q != id && b.z < a.z && b.z > to.z && point_segment_distance(b, a, to) < joint_overlap(p_));
+                },
+                [&](double ring) { return hit || ring > reach; });
+        };
+        look_in(0);  // the nodes never released
+        if (!hit && books_[id].pool != 0) look_in(books_[id].pool);
         return hit;
     }
 
@@ -557,7 +597,7 @@ private:
 
     GrowOptions options_;
     CandidateContext cx_;
-    ActiveNodes active_nodes_;
+    std::map<int, ActiveNodes> pools_;  // active nodes by SweepNode::pool
     std::priority_queue<std::pair<double, int>> heap_;  // highest first, then lowest id
 };
 

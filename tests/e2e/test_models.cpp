@@ -62,8 +62,9 @@ Generated generate(const std::string& input, double scale, const std::string& ou
 // reach, where no tip's square fitted under a slope running diagonally to it; such a tip may now
 // drop as far as the square's corner needs, tree/placement.cpp place_tip_top.) (nefertiti's 3 points behind the headdress were a scanner's folded sliver, a
 // hanging keel no tip fits under; repair now unfolds it, mesh/unfold_caps.hpp.) With
-// --buildplate-only a dead end sends its leaves down again one by one, so the dropped branches
-// counted there are single leaves that found no way to the bed (menger: 253 of 4240 samples).
+// --buildplate-only a dead end sends its leaves down again, merging only among themselves, then
+// one by one, so the dropped branches counted there are single leaves that found no way to the
+// bed (menger: 168 of 4240 samples).
 struct KnownShortfall {
     std::size_t fused = 0, penetrating = 0, dropped_samples = 0, dropped_branches = 0, uncovered = 0;
 };
@@ -77,8 +78,8 @@ KnownShortfall known_shortfall(const std::string& file, bool buildplate_only) {
         {"extruder_idler.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
         {"spot.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
         {"fandisk.stl", {{0, 0, 1, 0, 0}, {0, 0, 1, 0, 0}}},
-        {"rocker_arm.stl", {{0, 0, 0, 0, 0}, {0, 0, 18, 18, 0}}},
-        {"menger_sponge3.stl", {{0, 0, 0, 0, 0}, {0, 0, 246, 246, 0}}},
+        {"rocker_arm.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
+        {"menger_sponge3.stl", {{0, 0, 0, 0, 0}, {0, 0, 168, 168, 0}}},
         {"armadillo.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
         {"beast.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
         {"stanford_bunny.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
