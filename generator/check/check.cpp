@@ -96,6 +96,10 @@ struct Shell {
     Vec3 contact;                  // the model point above a top contact
     Vec3 gap_at;                   // the point of its top closest to the model above
     bool bottom_on_model = false;  // stands on the model, a gap above it
+    // A long top (a wall's, README "check"): every point of it with the model right above is a
+    // contact, not its centre alone (find_long_top).
+    bool long_top = false;
+    std::vector<Vec3> contacts;  // the model points above a long top's contact points
 };
 
 void ring(const Mesh& m, bool highest, Vec3& centre, double& width, double& z) {
@@ -173,6 +177,49 @@ void find_top_contact(const ModelQuery& q, Shell& s, const Tolerances& t) {
     s.gap_at = where;
     s.top_contact = gap <= t.gap + t.contact_slack;
     s.contact = {s.top.x, s.top.y, where.z + gap};
+}
+
+// A long top (a wall's): the solid's highest ring reaches at least 2 x reach along its longest
+// direction and is at least three times longer than it is wide across it (a strut's or tip's top
+// is a square). Every point of it with the model right above is a contact, not its centre alone;
+// the smallest of their gaps is the solid's air gap.
+void find_long_top(const ModelQuery& q, Shell& s, const Tolerances& t) {
+    std::vector<std::uint32_t> ring;
+    for (std::uint32_t v = 0; v < s.mesh.vertices.size(); ++v)
+        if (std::abs(s.mesh.vertices[v].z - s.zmax) <= 1e-5) ring.push_back(v);
+    Vec3 a, b;
+    double length = 0;
+    for (auto i : ring)
+        for (auto j : ring)
+            if (double d = horizontal_distance(s.mesh.vertices[i], s.mesh.vertices[j]); d > length)
+                length = d, a = s.mesh.vertices[i], b = s.mesh.vertices[j];
+    if (length < 2 * t.reach) return;
+    const Vec3 dir{(b.x - a.x) / length, (b.y - a.y) / length, 0};
+    double across = 0;
+    for (auto i : ring) {
+        const Vec3 d = s.mesh.vertices[i] - a;
+        across = std::max(across, std::abs(d.x * dir.y - d.y * dir.x));
+    }
+    if (length < 3 * across) return;
+    s.long_top = true;
+    s.top_contact = false;
+    s.top_gap = INFINITY;
+    for (const auto& f : s.mesh.faces) {
+        const Vec3 &p0 = s.mesh.vertices[f[0]], &p1 = s.mesh.vertices[f[1]], &p2 = s.mesh.vertices[f[2]];
+        if (std::max({std::abs(p0.z - s.zmax), std::abs(p1.z - s.zmax), std::abs(p2.z - s.zmax)}) > 1e-5) continue;
+        const double longest = std::max({distance(p0, p1), distance(p1, p2), distance(p2, p0)});
+        const int n = std::max(1, static_cast<int>(std::ceil(longest / (0.5 * t.spacing))));
+        for (int i = 0; i <= n; ++i)
+            for (int j = 0; i + j <= n; ++j) {
+                const Vec3 x = p0 + (p1 - p0) * (double(i) / n) + (p2 - p0) * (double(j) / n);
+                const double gap = gap_up(q, x);
+                if (gap > t.gap + t.contact_slack) continue;
+                s.top_contact = true;
+                s.contacts.push_back({x.x, x.y, x.z + gap});
+                if (gap < s.top_gap) s.top_gap = gap, s.gap_at = x;
+            }
+    }
+    if (s.top_contact) s.contact = s.contacts.front();
 }
 
 // Does the solid's foot stand on the model, within a gap below it? Its centre and four points of
@@ -415,8 +462,12 @@ void check_coverage(const Mesh& model, const ModelQuery& q, const std::vector<Sh
                     const Tolerances& t, const CheckOptions& o, CheckResult& r) {
     JudgeOverhangs j = judge_overhangs(model, p.critical_angle, p.layer_height, t.spacing);
     NearGrid near(t.reach);
-    for (const auto& s : shells)
-        if (s.top_contact) near.add(s.contact), ++r.contacts;
+    for (const auto& s : shells) {
+        if (!s.top_contact) continue;
+        ++r.contacts;
+        if (!s.long_top) near.add(s.contact);
+        for (const auto& c : s.contacts) near.add(c);
+    }
     // Where the omitted tips would have held the print: the model right above each one's top.
     NearGrid held(t.reach);
     for (const Vec3& top : omitted_tip_tops(o.tree, o.omitted_struts)) {
@@ -482,6 +533,7 @@ CheckResult check_supports(const Mesh& model_in, const Mesh& supports, const Par
     r.bodies = shells.size();
     for (auto& s : shells) {
         find_top_contact(q, s, t);
+        find_long_top(q, s, t);
         s.bottom_on_model = s.zmin > kOnBed && rests_on_model(q, s, t.gap + (t.gap - t.gap_min));
         check_shape(s, p, o, r);
         check_air_gap(s, t, r);

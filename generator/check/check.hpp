@@ -7,7 +7,8 @@
 //               lowest points) has a contact within `reach` horizontally, on the same stretch of
 //               surface (no further up or down than the steepest overhang rises over that reach,
 //               plus the air gap and a layer). A contact is the top of a solid with the model right
-//               above it. `reach` defaults to 0.71 x the sampling distance: the largest gap a
+//               above it; a long top (a wall's: the highest ring long and thin) is a contact at
+//               every point of it with the model right above. `reach` defaults to 0.71 x the sampling distance: the largest gap a
 //               square lattice of contacts leaves on a flat overhang (half its diagonal).
 //               Exempt: points whose free fall to the model below is at most `bridge_height`
 //               (2 air gaps and a layer: nothing printable fits under them, the print rests on

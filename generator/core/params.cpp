@@ -10,7 +10,12 @@ namespace cs {
 const std::vector<Preset>& presets() {
     static const std::vector<Preset> all = [] {
         std::vector<Preset> v;
-        Params g;  // defaults above are the generic preset
+        Params g;  // defaults above are the generic preset, but:
+        // walls under low ceilings are off: on the validation set (bench/validation, 2026-11-26)
+        // they took PrusaSlicer's support time from 1.11x to 1.08x snug (median) but Cura's from
+        // 0.99x to 1.20x its better support, and filament from 0.49x to 0.97x (CuraEngine 4.13
+        // prints a one-line wall as a loop, out and back). --ceiling-span 3.4 turns them on.
+        g.ceiling_span = 0;
         v.push_back({"generic-0.4",
                      "Any current FDM printer, 0.4 mm nozzle, PLA: 50 deg overhangs, 0.2 mm layers, 0.5 mm N walls "
                      "(0.4 mm walls vanish in slicers), 2.5 mm sampling (a tip every 2.5 mm, as dense as slicers' 15% line "

@@ -45,6 +45,11 @@ struct Params {
     bool supports_on_model = true;       // false = --buildplate-only
     Strategy strategy = Strategy::tree;
     double model_clearance = 0.3;        // extra air kept between a strut and the model
+    // Walls under ceilings that fall freely to the bed (ceilings/ceilings.hpp): rows at most this
+    // far apart, joined into a meander; 0: trees everywhere. At most 1.4 x sampling_distance, so
+    // every point between two rows is within check's lattice reach of one. Every preset turns
+    // them off (params.cpp): on the validation set they cost Cura minutes (README).
+    double ceiling_span = 3.4;
     // Holes and slots the print bridges (every point of their overhang within reach of an inside
     // corner, a wall going down from it) get no support unless this is true (overhang.hpp).
     bool support_bridges = false;

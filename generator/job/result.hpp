@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "ceilings/ceilings.hpp"
 #include "core/geometry.hpp"
 #include "mesh/repair.hpp"
 #include "orient/orient.hpp"
@@ -22,9 +23,11 @@ struct Supports {
     std::vector<NodeKind> grown_kinds;  // likewise, per node: an omitted branch's leaves stay leaves in the
                                         // .scad, so its tips come back when the omission is undone
     std::vector<Body> bodies;
-    Mesh mesh;
+    std::vector<CeilingWall> walls;  // under ceilings low over the bed or a floor (ceilings/ceilings.hpp)
+    Mesh mesh;                       // the bodies, then the walls
     double volume = 0;         // of the support solid, overlaps at joints counted once (solid_volume), mm^3
     double bodies_volume = 0;  // the bodies' volumes added up, overlaps counted twice, mm^3
+                               // (both add the walls' own; the ends of joins inside rows count twice)
     double length = 0;  // total strut length (mm)
     SlicerCost slicer_cost;  // estimate_slicer_cost of the sized tree, computed once per tree
 };

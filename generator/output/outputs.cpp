@@ -54,6 +54,8 @@ json supports_json(const Supports& s, const Params& p) {
             {"dropped_branches", st.dropped_branches},
             {"undone_joins", st.undone},
             {"bodies", s.bodies.size()},
+            {"ceiling_walls", s.walls.size()},
+            {"ceiling_walls_on_model", std::count_if(s.walls.begin(), s.walls.end(), [](const CeilingWall& w) { return w.bottom > 0; })},
             {"total_strut_length_mm", s.length},
             {"support_volume_mm3", s.volume},
             {"bodies_volume_mm3", s.bodies_volume},

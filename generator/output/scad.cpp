@@ -196,6 +196,20 @@ std::string tree_data(const Supports& sp) {
     return s;
 }
 
+// The walls under low ceilings: each a straight piece with a flat foot and top.
+std::string wall_data(const Supports& sp) {
+    Rows walls;
+    for (size_t i = 0; i < sp.walls.size(); ++i) {
+        const CeilingWall& w = sp.walls[i];
+        walls.push_back({std::to_string(i) + (w.join ? " join" : " row"),
+                         fmt::format("[[{}, {}], [{}, {}], {}, {}, {}]", num(w.from.x), num(w.from.y), num(w.to.x), num(w.to.y),
+                                     num(w.bottom), num(w.top), num(w.thickness))});
+    }
+    std::string s = "// Walls under low ceilings: [[x, y] from, [x, y] to, z of the foot (0: the bed, else a gap over the\n"
+                    "// model), z of the top (a gap under the ceiling), thickness (`wall`, or the strength rule's for its height)]\n";
+    return s + record_list("cs_walls", walls) + "\n";
+}
+
 }  // namespace
 
 std::string scad_number(double v) {
@@ -227,12 +241,16 @@ std::string emit_scad(const Supports& sp, const Job& job, const ScadMeta& meta) 
     s += regrow_section(job.params);
     s += provenance(job, meta);
     s += tree_data(sp);
+    if (!sp.walls.empty()) s += wall_data(sp);  // no walls: the file is as it was before walls existed
     s += "include <clever_support.scad>\n\n";
     s += "union() {\n";
     s += "    if (show_model) color(\"lightgray\") import(cs_model_file, convexity = 10);\n";
     s += "    if (show_supports)\n";
     s += "        cs_tree(cs_tree_record, omit_struts, highlight_strut, k, d_min, d_max, strength_length, wall, tip_length,\n";
     s += "                tip_diameter, feet, foot_height, foot_extra, clearance);\n";
+    // Only with walls: an empty third child changes OpenSCAD 2021's union of the other two (the
+    // bundled arches example's union then had shells that were not watertight).
+    if (!sp.walls.empty()) s += "    if (show_supports) cs_walls(cs_walls);\n";
     s += "}\n";
     s += "cs_show_edits(support_blockers, support_points);  // in the preview only\n";
     return s;

@@ -136,7 +136,18 @@ SupportTree grow_cheaper_tree(const ModelQuery& q, const SupportTree& hung, cons
     return best;
 }
 
-Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit) {
+TreeCounter tree_counter(const ModelQuery& q, const Params& p, const std::vector<Box3>& support_blockers) {
+    return [&q, p, support_blockers](const std::vector<Sample>& samples) {
+        const SupportTree t = grow_cheaper_tree(q, hang_leaves(q, samples, p, support_blockers), p, support_blockers);
+        const SlicerCost c = t.slicer_cost ? *t.slicer_cost : [&] {
+            const SizedTree sized = size_struts(t, p);
+            return estimate_slicer_cost(sized.tree, mean_strut_widths(sized), p);
+        }();
+        return TreeCount{c.island_layers, c.outline_mm, c.travel_mm};
+    };
+}
+
+Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit, std::vector<CeilingWall> walls) {
     Supports s;
     s.grown_struts = grown.struts;
     s.grown_pillars = grown.pillars;
@@ -146,8 +157,14 @@ Supports finish_supports(SupportTree grown, const Params& p, const std::vector<i
     s.slicer_cost = priced ? *priced : estimate_slicer_cost(s.sized.tree, mean_strut_widths(s.sized), p);
     s.bodies = build_bodies(s.sized, p);
     s.mesh = bodies_mesh(s.bodies, p.wall_thickness);
-    s.bodies_volume = signed_volume(s.mesh);  // separate closed shells: their volumes add
     s.volume = solid_volume(s.bodies, p.wall_thickness);
+    s.walls = std::move(walls);
+    for (const auto& w : s.walls) {
+        const Mesh m = wall_mesh(w);
+        s.volume += signed_volume(m);
+        append(s.mesh, m);
+    }
+    s.bodies_volume = signed_volume(s.mesh);  // separate closed shells: their volumes add
     s.length = s.sized.tree.total_length();
     return s;
 }
@@ -412,7 +429,7 @@ Mesh load_input(const std::string& path, const std::vector<std::string>& defines
 std::vector<std::string> job_stages(const Job& job) {
     std::vector<std::string> stages = {"load", "repair"};
     if (job.self_intersection_check) stages.push_back("self-intersections");
-    for (const char* s : {"orient", "model index", "overhangs", "coverage top-up", "tree", "struts", "columns baseline"})
+    for (const char* s : {"orient", "model index", "overhangs", "coverage top-up", "ceilings", "tree", "struts", "columns baseline"})
         stages.push_back(s);
     return stages;
 }
@@ -477,11 +494,16 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         sort_top_down(r.samples.samples);
         hung = hang_more_leaves(*query, std::move(hung), extra, p, blockers);  // the new samples' leaves, in sample order
     }
+    // Walls under ceilings low over the bed take the samples they carry; the tree grows from the rest.
+    Ceilings ceilings = sw.time("ceilings", progress, [&] { return support_ceilings(*query, r.samples.samples, p, tree_counter(*query, p, blockers), blockers); });
+    const SupportTree hung_rest = ceilings.walls.empty() ? SupportTree{} : hang_leaves(*query, ceilings.rest, p, blockers);
     // The tree and the columns baseline start from the same leaves (hanging them does not depend
-    // on the strategy).
-    SupportTree grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, hung, p, blockers); });
+    // on the strategy); the baseline carries every sample.
+    SupportTree grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, ceilings.walls.empty() ? hung : hung_rest, p, blockers); });
     // The user's omitted struts are numbered in the final tree (the one the .scad shows).
-    r.supports = sw.time("struts", progress, [&] { return finish_supports(std::move(grown), p, job.edits.omit_struts); });
+    r.supports = sw.time("struts", progress, [&] {
+        return finish_supports(std::move(grown), p, job.edits.omit_struts, std::move(ceilings.walls));
+    });
     Params columns = p;
     columns.strategy = Strategy::columns;
     r.columns = sw.time("columns baseline", progress, [&] { return finish_supports(grow_tree(*query, hung, columns, {}, blockers), columns); });

@@ -42,9 +42,14 @@ SupportTree grow_cheaper_tree(const ModelQuery& placed, const std::vector<Sample
 // support blockers (placed-model coordinates).
 SupportTree grow_cheaper_tree(const ModelQuery& placed, const SupportTree& hung, const Params& p,
                               const std::vector<Box3>& support_blockers = {});
+// What ceilings/ weighs walls against: the tree grown_cheaper_tree grows from some samples alone
+// (leaves hung clear of the support blockers), counted as estimate_slicer_cost counts it. It
+// keeps a reference to `placed` and copies of the rest.
+TreeCounter tree_counter(const ModelQuery& placed, const Params& p, const std::vector<Box3>& support_blockers = {});
 // Sizes a grown tree into supports: struts in `omit` (indices into `grown`) are pruned with their
 // branches first.
-Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit = {});
+Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit = {},
+                         std::vector<CeilingWall> walls = {});
 
 // The tree without the struts in `omit` and everything that hangs from them (the struts above, up
 // to the leaves), and without the pillars in `omit` (pillar i is index struts + i). Nodes keep

@@ -65,6 +65,10 @@ struct Tee {
     std::string file(const std::string& ext) const { return out + "/tee" + ext; }
 };
 
+// The T's plate, low over the bed, gets walls by default (README "Walls under low ceilings"); the
+// tests that edit the tree's struts (omit them, size them by k) ask for the tree.
+const std::string kTreeOnly = "--ceiling-span 0";
+
 CheckResult check_of(const std::string& model_stl, const std::string& supports_stl) {
     return check_supports(read_mesh(model_stl), read_mesh(supports_stl, true), Params{}, CheckOptions{});
 }
@@ -221,7 +225,7 @@ std::pair<std::set<int>, int> branch_of(const ScadValues& v, int e) {
 }
 
 TEST(ScadEdit, OmittedStrutGoesWithItsBranchAndTheRestIsSound) {
-    Tee t;
+    Tee t(kTreeOnly);
     std::string text = read_text(t.scad);
     auto values = parse_scad_values(text, t.scad);
     // The strut carrying the most leaves: with its branch gone, a stretch of overhang is bare.
@@ -286,15 +290,15 @@ TEST(ScadEdit, RegrowOfAnUneditedFileReproducesEveryOutput) {
 }
 
 TEST(ScadEdit, RegrowAfterEditingKMatchesAFreshRunWithK) {
-    Tee t;
+    Tee t(kTreeOnly);
     write_text(t.scad, with_line(read_text(t.scad), "k =", "k = 0.01; // [0:0.0005:0.02]"));
     auto r = cs("regrow -q " + quote(t.scad));
     ASSERT_EQ(r.code, 0) << r.out;
     std::string fresh = t.dir / "fresh";
-    ASSERT_EQ(cs(quote(t.input) + " --orient keep --no-timings -q --k 0.01 --out " + quote(fresh)).code, 0);
+    ASSERT_EQ(cs(quote(t.input) + " --orient keep --no-timings -q --k 0.01 " + kTreeOnly + " --out " + quote(fresh)).code, 0);
     for (const std::string ext : {".supports.stl", ".scad", ".report.json", ".3mf"})
         EXPECT_TRUE(read_text(t.file(ext)) == read_text(fresh + "/tee" + ext)) << ext << " differs";
-    auto plain = Tee();
+    auto plain = Tee(kTreeOnly);
     EXPECT_FALSE(read_text(plain.file(".supports.stl")) == read_text(t.file(".supports.stl"))) << "k changed nothing: a weak test";
 }
 
@@ -480,7 +484,7 @@ double rendered_volume(const std::string& openscad, const std::string& scad, con
 }
 
 TEST(ScadEdit, EditedScadRendersOnDebian2021AndOnManifold) {
-    Tee t;
+    Tee t(kTreeOnly);  // it omits a strut
     std::string text = read_text(t.scad);
     const double plain_volume =
         nlohmann::json::parse(read_text(t.file(".report.json")))["supports"]["support_volume_mm3"].get<double>();

@@ -1,0 +1,86 @@
+#!/usr/bin/env python3
+"""Fits the tree prices of the generator's slicer time model (generator/core/slicer_time.hpp) to G-code.
+
+usage: bench/fit_time_model.py TUNING.json [CHECK.json ...]
+
+TUNING.json is a hand-off run of the tuning set (bench/handoff.py --tuning): for every model it holds
+what the generator counted for its tree (report: slicer_estimate island_layers, outline_mm, travel_mm)
+and the seconds the supports added in each slicer's G-code (route minus the bare model). Per route
+(cura_ours_mesh, prusa_ours_3mf) it fits
+
+    added seconds = island_s * island_layers + outline_s_per_mm * outline_mm + hop_s_per_mm * travel_mm
+
+by least squares on the relative error (every model weighs the same), prints the three prices and,
+for TUNING.json and each CHECK.json (e.g. the validation run, never fitted on), the estimate over the
+G-code per model with its median and worst.
+"""
+import json
+import math
+import statistics
+import sys
+
+ROUTES = ("cura_ours_mesh", "prusa_ours_3mf")
+TERMS = ("island_layers", "outline_mm", "travel_mm")
+
+
+def rows(path, route):
+    out = []
+    for name, m in json.load(open(path))["models"].items():
+        est = m.get("gen", {}).get("tree", {}).get("slicer_estimate")
+        d = m.get("derived", {}).get(route)
+        if est and d and d.get("support_min"):
+            out.append((name, [est[t] for t in TERMS], d["support_min"] * 60))
+    return out
+
+
+def solve(a, b):
+    """Gauss-Jordan with partial pivoting (no numpy on the bench machine)."""
+    n = len(a)
+    m = [row[:] + [b[i]] for i, row in enumerate(a)]
+    for i in range(n):
+        p = max(range(i, n), key=lambda k: abs(m[k][i]))
+        m[i], m[p] = m[p], m[i]
+        for k in range(n):
+            if k != i:
+                f = m[k][i] / m[i][i]
+                m[k] = [x - f * y for x, y in zip(m[k], m[i])]
+    return [m[i][n] / m[i][i] for i in range(n)]
+
+
+def fit(data):
+    k = len(TERMS)
+    w = [1 / t for _, _, t in data]
+    a = [[sum(wr * wr * x[i] * x[j] for wr, (_, x, _) in zip(w, data)) for j in range(k)] for i in range(k)]
+    b = [sum(wr * wr * x[i] * t for wr, (_, x, t) in zip(w, data)) for i in range(k)]
+    return solve(a, b)
+
+
+def report(label, data, prices):
+    ratios = [(name, sum(p * v for p, v in zip(prices, x)) / t) for name, x, t in data]
+    if not ratios:
+        return
+    rs = [r for _, r in ratios]
+    worst = max(ratios, key=lambda nr: abs(math.log(nr[1])))
+    print(f"  {label}: estimate / G-code median {statistics.median(rs):.2f}, worst {worst[1]:.2f} ({worst[0]})")
+    print("    " + ", ".join(f"{n} {r:.2f}" for n, r in ratios))
+
+
+def main(paths):
+    for route in ROUTES:
+        data = rows(paths[0], route)
+        if len(data) < len(TERMS):
+            print(f"{route}: {len(data)} models, too few to fit")
+            continue
+        prices = fit(data)
+        print(f"{route}: {len(data)} models; island_s {prices[0]:.4f}, outline_s_per_mm {prices[1]:.4f}, "
+              f"hop_s_per_mm {prices[2]:.4f}")
+        report(paths[0], data, prices)
+        for path in paths[1:]:
+            report(path, rows(path, route), prices)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) < 2:
+        print(__doc__, file=sys.stderr)
+        sys.exit(2)
+    main(sys.argv[1:])

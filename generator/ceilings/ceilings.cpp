@@ -1,0 +1,516 @@
+#include "ceilings/ceilings.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <optional>
+
+#include "core/rules.hpp"
+#include "core/slicer_time.hpp"
+#include "core/xy_grid.hpp"
+#include "query/model_query.hpp"
+
+namespace cs {
+namespace {
+
+// Stations along a wall (mm): fine enough that a round ceiling's top steps by well under a layer
+// over a bore's flat crown, coarse enough to keep the SCAD small.
+constexpr double kStation = 0.5;
+// A wall shorter than this is not worth a line of its own; its samples stay with the tree.
+constexpr double kMinWall = 1.5;
+// How far from a wall's top a point of the ceiling counts as carried by it: just under the judge's
+// lattice reach (0.71 of the sampling distance, README "check"), the generator's own margin.
+constexpr double kWallReach = 0.69;
+// Probes per side of a sample's lattice cell when asking whether the walls carry all of it.
+constexpr int kCellProbes = 11;
+// A region needs this many samples to be worth walls.
+constexpr std::size_t kMinRegion = 4;
+
+// The ceiling over (x, y) near height z_ref: the first face above z_ref - rise when it is an
+// overhang face (steeper than the critical angle, seen from below) within rise of z_ref.
+std::optional<double> ceiling_near(const ModelQuery& q, double x, double y, double z_ref, double rise, double overhang_nz) {
+    auto hit = q.first_hit({x, y, z_ref - rise}, {0, 0, 1});
+    if (!hit || hit->point.z > z_ref + rise) return std::nullopt;
+    const Vec3 n = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
+    const double l = norm(n);
+    if (!(l > 0) || n.z / l > overhang_nz) return std::nullopt;
+    return hit->point.z;
+}
+
+// Nearly level floors only: a wall's foot is one flat piece a gap above the highest point under it.
+constexpr double kLevelFloor = 0.95;
+
+// Where a wall under x may stand: the bed (0), or a level face of the model a gap below... the
+// floor's height; nothing where the fall lands on a slope or less than a wall's room is left.
+std::optional<double> floor_under(const ModelQuery& q, const Vec3& x, const Params& p) {
+    auto hit = q.first_hit(x - Vec3{0, 0, 1e-3}, {0, 0, -1});
+    if (!hit) return 0.0;
+    if (!p.supports_on_model) return std::nullopt;  // --buildplate-only: the bed or nothing
+    const Vec3 n = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
+    if (!(n.z > kLevelFloor * norm(n))) return std::nullopt;
+    const double z = hit->point.z + p.gap;
+    if (x.z - p.gap - z < touching_space(p) + p.tip_length) return std::nullopt;
+    return z;
+}
+
+// How far above or below a sample its own stretch of surface may lie at `reach` from it: the
+// steepest overhang's rise over that reach, plus a layer.
+double same_surface_rise(const Params& p, double reach) {
+    return reach * std::tan(deg_to_rad(90 - p.critical_angle)) + p.layer_height;
+}
+
+// A wall while it is laid out: stations along a line, the top (one gap under the ceiling) and the
+// floor (the bed, or one gap over the model) at each; cut into flat pieces at the end.
+struct Run {
+    std::vector<Vec3> top;
+    std::vector<double> floor;
+    std::vector<double> thickness;
+    bool join = false;
+};
+
+struct Region {
+    std::vector<std::size_t> samples;
+    Box3 box;
+};
+
+// Samples that fall freely to the bed, joined into regions where lattice neighbours lie on the
+// same stretch of surface.
+std::vector<Region> free_regions(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p) {
+    const double sd = p.sampling_distance, low = touching_space(p) + p.tip_length;
+    std::vector<char> free(samples.size(), 0);
+    XyGrid<std::size_t> grid(sd);
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        const Vec3& s = samples[i].p;
+        if (s.z < low || !floor_under(q, s, p)) continue;
+        free[i] = 1;
+        grid.insert(s, i);
+    }
+    const double rise = same_surface_rise(p, 1.5 * sd);
+    std::vector<char> seen(samples.size(), 0);
+    std::vector<Region> regions;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        if (!free[i] || seen[i]) continue;
+        Region r;
+        r.box.min = r.box.max = samples[i].p;
+        std::vector<std::size_t> stack{i};
+        seen[i] = 1;
+        while (!stack.empty()) {
+            const std::size_t k = stack.back();
+            stack.pop_back();
+            r.samples.push_back(k);
+            const Vec3& a = samples[k].p;
+            r.box.min = {std::min(r.box.min.x, a.x), std::min(r.box.min.y, a.y), std::min(r.box.min.z, a.z)};
+            r.box.max = {std::max(r.box.max.x, a.x), std::max(r.box.max.y, a.y), std::max(r.box.max.z, a.z)};
+            grid.visit_near(a, 2, [&](std::size_t j) {
+                const Vec3& b = samples[j].p;
+                if (!seen[j] && horizontal_distance(a, b) <= 1.5 * sd && std::abs(a.z - b.z) <= rise) seen[j] = 1, stack.push_back(j);
+            });
+        }
+        std::sort(r.samples.begin(), r.samples.end());
+        if (r.samples.size() >= kMinRegion) regions.push_back(std::move(r));
+    }
+    return regions;
+}
+
+// A row or join is laid in (u, v) coordinates: u along it, v across. `along_x` says which is x.
+struct Frame {
+    bool along_x;
+    Vec3 at(double u, double v, double z) const { return along_x ? Vec3{u, v, z} : Vec3{v, u, z}; }
+};
+
+// The floor and top of a wall at one station: the top a gap under the lowest ceiling over its
+// width and side clearance, all of it this region's overhang (near a sample of it); the floor the
+// bed, or a gap over a level face of the model the same under all of it. Nothing where any part
+// is not so.
+std::optional<std::pair<double, double>> station_of(const ModelQuery& q, const XyGrid<std::size_t>& region,
+                                                    const std::vector<Sample>& samples, const Vec3& c, const Vec3& across,
+                                                    const Params& p, double overhang_nz, double thickness) {
+    const double half = 0.5 * thickness + tip_side_clearance(p), rise = same_surface_rise(p, p.sampling_distance);
+    const Vec3 along{across.y, -across.x, 0};  // a wall may end at this station: clearance beyond it too
+    const double side = tip_side_clearance(p);
+    double lowest = INFINITY, floor_lo = INFINITY, floor_hi = -INFINITY;
+    for (const Vec3 offset : {Vec3{}, across * -half, across * half, along * side, along * -side}) {
+        const Vec3 x = c + offset;
+        std::optional<double> z_ref;
+        region.visit_near(x, 1, [&](std::size_t i) {
+            if (horizontal_distance(samples[i].p, x) > p.sampling_distance) return false;
+            z_ref = samples[i].p.z;
+            return true;
+        });
+        if (!z_ref) return std::nullopt;
+        auto z = ceiling_near(q, x.x, x.y, *z_ref, rise, overhang_nz);
+        if (!z) return std::nullopt;
+        auto floor = floor_under(q, {x.x, x.y, *z}, p);
+        if (!floor) return std::nullopt;
+        lowest = std::min(lowest, *z);
+        floor_lo = std::min(floor_lo, *floor), floor_hi = std::max(floor_hi, *floor);
+    }
+    if (floor_hi - floor_lo > p.layer_height) return std::nullopt;
+    const double top = lowest - p.gap;
+    if (top - floor_hi < touching_space(p)) return std::nullopt;
+    return std::pair{floor_hi, top};
+}
+
+// A station of a wall as thick as its height asks (wall_thickness_for): probed at the wall
+// thickness, and again at the strength rule's width where the wall is taller (its side clearance
+// then kept from the thicker wall). {floor, top, thickness}.
+struct Station {
+    double floor, top, thickness;
+};
+std::optional<Station> station(const ModelQuery& q, const XyGrid<std::size_t>& region, const std::vector<Sample>& samples,
+                               const Vec3& c, const Vec3& across, const Params& p, double overhang_nz) {
+    auto st = station_of(q, region, samples, c, across, p, overhang_nz, p.wall_thickness);
+    if (!st) return std::nullopt;
+    const double t = wall_thickness_for(p, st->second - st->first);
+    if (t <= p.wall_thickness) return Station{st->first, st->second, p.wall_thickness};
+    auto thick = station_of(q, region, samples, c, across, p, overhang_nz, t);
+    if (!thick) return std::nullopt;
+    return Station{thick->first, thick->second, t};  // no taller than the first probe: t is enough
+}
+
+// The walls along one line (u from u0 to u1 at v): runs of stations where a wall fits.
+std::vector<Run> walls_along(const ModelQuery& q, const XyGrid<std::size_t>& region, const std::vector<Sample>& samples,
+                             const Frame& f, double v, double u0, double u1, const Params& p, double overhang_nz) {
+    const Vec3 across = f.at(0, 1, 0);
+    std::vector<Run> out;
+    Run cur;
+    auto close = [&] {
+        if (cur.top.size() >= 2 && horizontal_distance(cur.top.front(), cur.top.back()) >= kMinWall) out.push_back(cur);
+        cur = Run{};
+    };
+    const int n = static_cast<int>(std::floor((u1 - u0) / kStation));
+    for (int i = 0; i <= n; ++i) {
+        const Vec3 c = f.at(u0 + i * kStation, v, 0);
+        if (auto st = station(q, region, samples, c, across, p, overhang_nz)) {
+            cur.top.push_back({c.x, c.y, st->top});
+            cur.floor.push_back(st->floor);
+            cur.thickness.push_back(st->thickness);
+        } else {
+            close();
+        }
+    }
+    close();
+    return out;
+}
+
+double coord(const Vec3& a, bool x) { return x ? a.x : a.y; }
+
+// A join between rows at v_a and v_b, at u: the wall across, or nothing where it does not fit.
+std::optional<Run> join_at(const ModelQuery& q, const XyGrid<std::size_t>& region, const std::vector<Sample>& samples,
+                           const Frame& f, double u, double v_a, double v_b, const Params& p, double overhang_nz) {
+    const Vec3 side = f.at(1, 0, 0);
+    Run w;
+    w.join = true;
+    const int n = std::max(1, static_cast<int>(std::ceil((v_b - v_a) / kStation)));
+    for (int i = 0; i <= n; ++i) {
+        const Vec3 c = f.at(u, v_a + (v_b - v_a) * i / n, 0);
+        auto st = station(q, region, samples, c, side, p, overhang_nz);
+        if (!st) return std::nullopt;
+        w.top.push_back({c.x, c.y, st->top});
+        w.floor.push_back(st->floor);
+        w.thickness.push_back(st->thickness);
+    }
+    return w;
+}
+
+// How far a row may be cut back to end flush with a join.
+constexpr double kMaxCut = 1.5;
+
+// Can the row (stations in increasing u) end at u = `end` on that side, cutting at most kMaxCut,
+// without losing its other end?
+bool can_end_at(const Run& w, double end, bool along_x, bool high_end) {
+    const double first = coord(w.top.front(), along_x), last = coord(w.top.back(), along_x);
+    if (high_end) return end <= last + 1e-9 && last - end <= kMaxCut && end - first >= kMinWall;
+    return end >= first - 1e-9 && end - first <= kMaxCut && last - end >= kMinWall;
+}
+
+// Cuts the row to end at u = `end` on that side; the new end's top is the lower, its floor the
+// higher, of the stations around it (the ceiling between them is not known finer).
+void end_at(Run& w, double end, bool along_x, bool high_end) {
+    Run kept;
+    kept.join = w.join;
+    double z = INFINITY, floor = -INFINITY, thickness = 0;
+    for (std::size_t i = 0; i < w.top.size(); ++i) {
+        const double u = coord(w.top[i], along_x);
+        const bool inside = high_end ? u < end - 1e-9 : u > end + 1e-9;
+        if (std::abs(u - end) < kStation - 1e-9)
+            z = std::min(z, w.top[i].z), floor = std::max(floor, w.floor[i]), thickness = std::max(thickness, w.thickness[i]);
+        if (inside) kept.top.push_back(w.top[i]), kept.floor.push_back(w.floor[i]), kept.thickness.push_back(w.thickness[i]);
+    }
+    Vec3 cut = w.top.front();
+    (along_x ? cut.x : cut.y) = end;
+    cut.z = z;
+    if (high_end) kept.top.push_back(cut), kept.floor.push_back(floor), kept.thickness.push_back(thickness);
+    else
+        kept.top.insert(kept.top.begin(), cut), kept.floor.insert(kept.floor.begin(), floor),
+            kept.thickness.insert(kept.thickness.begin(), thickness);
+    w = std::move(kept);
+}
+
+struct RegionWalls {
+    std::vector<Run> walls;
+    double length = 0;        // of all walls, mm
+    std::size_t pieces = 0;   // separate meanders (islands per layer)
+    double height = 0;        // mean top height
+};
+
+// Seconds the region's walls add on a route: each run's line on every layer it spans, plus, on
+// every layer, the meanders' islands and the hops between them (about a span each).
+double walls_route_seconds(const SlicerRoute& r, const RegionWalls& w, const Params& p) {
+    double s = 0;
+    for (const Run& run : w.walls) {
+        double height = 0, thickness = 0;
+        for (std::size_t i = 0; i < run.top.size(); ++i)
+            height += run.top[i].z - run.floor[i], thickness = std::max(thickness, run.thickness[i]);
+        height /= run.top.size();
+        s += height / p.layer_height * line_route_seconds(r, horizontal_distance(run.top.front(), run.top.back()), thickness);
+    }
+    const double layers = w.height / p.layer_height, pieces = static_cast<double>(w.pieces);
+    return s + layers * tree_route_seconds(r, pieces, 0, (pieces - 1) * p.ceiling_span);
+}
+
+RegionWalls region_walls(const ModelQuery& q, const Region& r, const std::vector<Sample>& samples, const Params& p,
+                         double overhang_nz) {
+    XyGrid<std::size_t> grid(p.sampling_distance);
+    for (std::size_t i : r.samples) grid.insert(samples[i].p, i);
+    const bool along_x = r.box.max.x - r.box.min.x >= r.box.max.y - r.box.min.y;
+    const Frame f{along_x};
+    // As few rows as keep every point across within reach of one: the outer rows may stand up to
+    // kWallReach inside the outer samples (those lie on the rim), never nearer them than the
+    // wall's half width and side clearance (nothing is above a wall centred on a rim).
+    const double inset = 0.5 * p.wall_thickness + tip_side_clearance(p) + 0.5 * kStation;
+    const double edge = std::max(inset, 0.95 * kWallReach * p.sampling_distance);
+    const double lo_v = coord(r.box.min, !along_x), hi_v = coord(r.box.max, !along_x);
+    const int gaps = std::max(0, static_cast<int>(std::ceil((hi_v - lo_v - 2 * edge) / p.ceiling_span - 1e-9)));
+    const double spacing = gaps == 0 ? 0 : std::min(p.ceiling_span, (hi_v - lo_v - 2 * inset) / gaps);
+    const double u0 = coord(r.box.min, along_x) - p.sampling_distance, u1 = coord(r.box.max, along_x) + p.sampling_distance;
+    std::vector<std::vector<Run>> by_row;
+    std::vector<double> row_v;
+    for (int j = 0; j <= gaps; ++j) {
+        const double v = 0.5 * (lo_v + hi_v) + (j - 0.5 * gaps) * spacing;
+        by_row.push_back(walls_along(q, grid, samples, f, v, u0, u1, p, overhang_nz));
+        row_v.push_back(v);
+    }
+    RegionWalls out;
+    std::vector<std::vector<char>> joined(by_row.size());
+    for (std::size_t j = 0; j < by_row.size(); ++j) joined[j].assign(by_row[j].size(), 0);
+    std::size_t joins = 0;
+    for (std::size_t j = 0; j + 1 < by_row.size(); ++j)
+        for (std::size_t a = 0; a < by_row[j].size(); ++a)
+            for (std::size_t b = 0; b < by_row[j + 1].size(); ++b) {
+                const auto &wa = by_row[j][a].top, &wb = by_row[j + 1][b].top;
+                const double a0 = coord(wa.front(), along_x), a1 = coord(wa.back(), along_x);
+                const double b0 = coord(wb.front(), along_x), b1 = coord(wb.back(), along_x);
+                const double lo = std::max(a0, b0), hi = std::min(a1, b1);
+                if (hi - lo < kMinWall) continue;
+                // Alternate ends: a meander, one line through the region. The join's outer face is
+                // flush with the rows' ends, which are cut back to it: a slicer then prints the
+                // corner as one line turning (a stub or a T beside it becomes a line of its own).
+                const bool high_end = j % 2 == 0;
+                const double half = 0.5 * p.wall_thickness;
+                for (int k = 0; k < 4; ++k) {
+                    const double u = high_end ? hi - half - k * kStation : lo + half + k * kStation;
+                    const double end = high_end ? u + half : u - half;
+                    if (!can_end_at(by_row[j][a], end, along_x, high_end) || !can_end_at(by_row[j + 1][b], end, along_x, high_end))
+                        break;
+                    if (auto w = join_at(q, grid, samples, f, u, row_v[j], row_v[j + 1], p, overhang_nz)) {
+                        end_at(by_row[j][a], end, along_x, high_end);
+                        end_at(by_row[j + 1][b], end, along_x, high_end);
+                        out.walls.push_back(*w);
+                        joined[j][a] = joined[j + 1][b] = 1;
+                        ++joins;
+                        break;
+                    }
+                }
+            }
+    std::size_t rows_kept = 0;
+    for (std::size_t j = 0; j < by_row.size(); ++j)
+        for (std::size_t a = 0; a < by_row[j].size(); ++a) {
+            // Strength: every piece is as thick as the strength rule asks for its height (station).
+            out.walls.push_back(std::move(by_row[j][a]));
+            ++rows_kept;
+        }
+    double height_sum = 0;
+    std::size_t stations = 0;
+    for (const auto& w : out.walls) {
+        out.length += horizontal_distance(w.top.front(), w.top.back());
+        for (std::size_t i = 0; i < w.top.size(); ++i) height_sum += w.top[i].z - w.floor[i], ++stations;
+    }
+    out.height = stations ? height_sum / stations : 0;  // mean wall height
+    out.pieces = rows_kept > joins ? rows_kept - joins : 1;
+    return out;
+}
+
+// A piece this long or longer counts as carrying the ceiling along its whole top; a shorter one
+// at its middle only (a wall's top is judged as a contact along its length where it is long).
+constexpr double kLongPiece = 4.0;
+
+// A run cut into pieces with a flat top and floor: each as long as the ceiling and floor above and
+// below it stay within half a layer, its top the lowest top and its floor the highest floor over
+// it. Neighbouring pieces share the station between them.
+std::vector<CeilingWall> flat_pieces(const Run& r, const Params& p) {
+    std::vector<CeilingWall> out;
+    const double flat = 0.5 * p.layer_height;
+    std::size_t i = 0;
+    while (i + 1 < r.top.size()) {
+        double top_lo = std::min(r.top[i].z, r.top[i + 1].z), top_hi = std::max(r.top[i].z, r.top[i + 1].z);
+        double fl_lo = std::min(r.floor[i], r.floor[i + 1]), fl_hi = std::max(r.floor[i], r.floor[i + 1]);
+        std::size_t k = i + 1;
+        while (k + 1 < r.top.size()) {
+            const double t = r.top[k + 1].z, fl = r.floor[k + 1];
+            if (std::max(top_hi, t) - std::min(top_lo, t) > flat || std::max(fl_hi, fl) - std::min(fl_lo, fl) > flat) break;
+            top_lo = std::min(top_lo, t), top_hi = std::max(top_hi, t), fl_lo = std::min(fl_lo, fl), fl_hi = std::max(fl_hi, fl);
+            ++k;
+        }
+        const double t = *std::max_element(r.thickness.begin() + i, r.thickness.begin() + k + 1);
+        out.push_back({{r.top[i].x, r.top[i].y, 0}, {r.top[k].x, r.top[k].y, 0}, fl_hi, top_lo, r.join, t});
+        i = k;
+    }
+    return out;
+}
+
+// The overhang face (seen from below) above x between heights z0 and z1, where there is one: the
+// point the ray meets it. Rays go up from z0, past the faces of any material they start in or cross
+// (a floor under a low ceiling).
+std::optional<Vec3> overhang_between(const ModelQuery& q, const Vec3& x, double z0, double z1, double overhang_nz) {
+    Vec3 from{x.x, x.y, z0};
+    for (int crossings = 0; crossings < 8; ++crossings) {
+        auto hit = q.first_hit(from, {0, 0, 1});
+        if (!hit || hit->point.z > z1) return std::nullopt;
+        const Vec3 n = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
+        if (n.z < overhang_nz * norm(n)) return hit->point;
+        from = hit->point + Vec3{0, 0, 1e-4};
+    }
+    return from;  // a stack of faces: count it as surface to carry
+}
+
+// Does every point of the sample's lattice cell on its own stretch of surface lie within reach of
+// a wall's top, measured in 3D from where the surface is (as `check` measures it: on a round
+// ceiling a point beside the wall lies higher or lower than the wall's top)?
+bool walls_carry(const ModelQuery& q, const XyGrid<Vec3>& tops, const Vec3& s, const Params& p, double overhang_nz) {
+    const double sd = p.sampling_distance, reach = kWallReach * sd, rise = same_surface_rise(p, reach);
+    const long rings = static_cast<long>(std::ceil(reach / tops.cell())) + 1;
+    auto within = [&](const Vec3& x) {
+        return tops.visit_near(x, rings, [&](const Vec3& t) { return distance(t, x) <= reach; });
+    };
+    if (!within(s)) return false;
+    for (int i = 0; i < kCellProbes; ++i)
+        for (int j = 0; j < kCellProbes; ++j) {
+            const Vec3 x{s.x + sd * (double(i) / (kCellProbes - 1) - 0.5), s.y + sd * (double(j) / (kCellProbes - 1) - 0.5), s.z};
+            const auto surface = overhang_between(q, x, s.z - 2 * rise, s.z + 2 * rise, overhang_nz);
+            if (surface && !within(*surface)) return false;
+        }
+    return true;
+}
+
+// Points every quarter millimetre along each long piece's top, at the ceiling's height (a gap
+// above); a short piece's middle.
+XyGrid<Vec3> wall_tops(const std::vector<CeilingWall>& walls, const Params& p) {
+    XyGrid<Vec3> grid(1.0);
+    for (const auto& w : walls) {
+        const Vec3 a{w.from.x, w.from.y, w.top + p.gap}, b{w.to.x, w.to.y, w.top + p.gap};
+        if (horizontal_distance(a, b) < kLongPiece) {
+            grid.insert((a + b) * 0.5, (a + b) * 0.5);
+            continue;
+        }
+        const int n = std::max(1, static_cast<int>(std::ceil(horizontal_distance(a, b) / 0.25)));
+        for (int k = 0; k <= n; ++k) grid.insert(a + (b - a) * (double(k) / n), a + (b - a) * (double(k) / n));
+    }
+    return grid;
+}
+
+// Does any wall's solid (its width across, foot to top) overlap one of the boxes?
+bool enters_blocker(const std::vector<Run>& walls, const std::vector<Box3>& blockers, const Params& p) {
+    const double half = 0.5 * p.wall_thickness;
+    for (const Run& w : walls)
+        for (std::size_t i = 0; i < w.top.size(); ++i)
+            for (const Box3& b : blockers)
+                if (w.top[i].x + half > b.min.x && w.top[i].x - half < b.max.x && w.top[i].y + half > b.min.y &&
+                    w.top[i].y - half < b.max.y && w.top[i].z > b.min.z && w.floor[i] < b.max.z)
+                    return true;
+    return false;
+}
+
+}  // namespace
+
+Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
+                          const TreeCounter& tree_count, const std::vector<Box3>& blockers) {
+    Ceilings out;
+    if (p.ceiling_span <= 0 || p.strategy != Strategy::tree) {
+        out.rest = samples;
+        return out;
+    }
+    const double overhang_nz = -std::sin(deg_to_rad(p.critical_angle));
+    for (const Region& r : free_regions(q, samples, p)) {
+        RegionWalls w = region_walls(q, r, samples, p, overhang_nz);
+        if (std::getenv("CS_DEBUG_CEILINGS") && w.walls.empty())
+            std::fprintf(stderr, "region %zu samples box (%.1f %.1f %.1f)-(%.1f %.1f %.1f): no walls\n", r.samples.size(),
+                         r.box.min.x, r.box.min.y, r.box.min.z, r.box.max.x, r.box.max.y, r.box.max.z);
+        if (w.walls.empty() || enters_blocker(w.walls, blockers, p)) continue;
+        // The region as a tree, against its walls plus a tree for what they leave (rims, ends).
+        std::vector<CeilingWall> pieces;
+        for (const Run& run : w.walls)
+            for (auto& piece : flat_pieces(run, p)) pieces.push_back(piece);
+        const XyGrid<Vec3> own_tops = wall_tops(pieces, p);
+        std::vector<Sample> own, left;
+        for (std::size_t i : r.samples) {
+            own.push_back(samples[i]);
+            if (!walls_carry(q, own_tops, samples[i].p, p, overhang_nz)) left.push_back(samples[i]);
+        }
+        const TreeCount t = tree_count(own), rest = left.empty() ? TreeCount{} : tree_count(left);
+        auto tree_s = [](const SlicerRoute& route, const TreeCount& c) {
+            return tree_route_seconds(route, c.island_layers, c.outline_mm, c.hop_mm);
+        };
+        const double tree_cura = tree_s(kCuraRoute, t), tree_prusa = tree_s(kPrusaRoute, t);
+        const double walls_cura = walls_route_seconds(kCuraRoute, w, p) + tree_s(kCuraRoute, rest);
+        const double walls_prusa = walls_route_seconds(kPrusaRoute, w, p) + tree_s(kPrusaRoute, rest);
+        if (std::getenv("CS_DEBUG_CEILINGS"))
+            std::fprintf(stderr, "region %zu samples (%zu left) box (%.1f %.1f %.1f)-(%.1f %.1f %.1f) walls %zu len %.1f pieces %zu h %.1f: "
+                         "Cura walls %.0f s tree %.0f s, Prusa walls %.0f s tree %.0f s\n",
+                         r.samples.size(), left.size(), r.box.min.x, r.box.min.y, r.box.min.z, r.box.max.x, r.box.max.y, r.box.max.z,
+                         w.walls.size(), w.length, w.pieces, w.height, walls_cura, tree_cura, walls_prusa, tree_prusa);
+        // Either slicer may print it: walls only where both print them faster.
+        if (!(walls_cura < tree_cura && walls_prusa < tree_prusa)) continue;
+        ++out.regions;
+        out.tree_cura_s += tree_cura, out.tree_prusa_s += tree_prusa;
+        out.walls_cura_s += walls_cura, out.walls_prusa_s += walls_prusa;
+        out.walls.insert(out.walls.end(), pieces.begin(), pieces.end());
+    }
+    if (out.walls.empty()) {
+        out.rest = samples;
+        return out;
+    }
+    const XyGrid<Vec3> tops = wall_tops(out.walls, p);
+    for (const Sample& s : samples) {
+        if (walls_carry(q, tops, s.p, p, overhang_nz)) ++out.covered;
+        else out.rest.push_back(s);
+    }
+    return out;
+}
+
+double wall_thickness_for(const Params& p, double height) {
+    return std::max(p.wall_thickness, strength_width(p, height, 0));
+}
+
+Mesh wall_mesh(const CeilingWall& w) {
+    const double thickness = w.thickness;
+    Mesh m;
+    const Vec3 d = normalized(Vec3{w.to.x - w.from.x, w.to.y - w.from.y, 0});
+    const Vec3 o = Vec3{-d.y, d.x, 0} * (0.5 * thickness);
+    // Cross-section at each end, counter-clockwise seen from ahead (+d): right foot, left foot,
+    // left top, right top.
+    for (const Vec3& c : {w.from, w.to}) {
+        const Vec3 foot{c.x, c.y, w.bottom}, top{c.x, c.y, w.top};
+        m.vertices.insert(m.vertices.end(), {foot - o, foot + o, top + o, top - o});
+    }
+    m.faces = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}};
+    for (std::uint32_t i = 0; i < 4; ++i) {
+        const std::uint32_t b = (i + 1) % 4;
+        m.faces.push_back({i, b, b + 4});
+        m.faces.push_back({i, b + 4, i + 4});
+    }
+    return m;
+}
+
+}  // namespace cs

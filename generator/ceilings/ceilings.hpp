@@ -1,0 +1,90 @@
+// Walls under flat and round ceilings low over the bed or a level floor of the model (issue #32):
+// where a stretch of overhang falls freely to the bed or to such a floor, thin walls (one line wide) stand in rows under it, `ceiling_span` apart,
+// joined at alternate ends into one meander, so a slicer prints the region as a few long lines per
+// layer instead of one small island per tip. Long straight lines print near full speed; a tip's
+// 1 mm outline never does (acceleration), and every island costs a travel and often a retraction.
+//
+// Stage: after overhang sampling, before the tree (core <- mesh <- query <- overhang <- ceilings
+// <- tree). It takes the samples and gives the tree back those the walls do not cover.
+//
+//   support_ceilings(model, samples, p, tree_count, blockers) -> Ceilings{walls, rest, ...}
+//     regions   samples whose fall to the bed is free, joined where lattice neighbours lie on the
+//               same stretch of surface
+//     rows      along the region's longer side, at most ceiling_span apart; each row is cut into
+//               walls where the ceiling above it is an overhang of this region all across the
+//               wall's width plus tip_side_clearance (a wall beside it, or a hole, ends a wall)
+//     floors    the bed, or a level face of the model (a gap above it): walls under a roof over
+//               the model stand on it as pillars do
+//     tops      one air gap under the lowest point of the ceiling over the wall's width, at every
+//               station (kStation apart); each row is then cut into pieces with a flat top and
+//               floor, so a round ceiling gets a staircase that follows it
+//     joins     a short wall between neighbouring rows at alternate ends (a meander)
+//     strength  every piece stands on its own: as thick as the strength rule asks of a column
+//               its height (wall_thickness_for), never thinner than the wall thickness
+//     choice    per region, by the slicers' estimated seconds (core/slicer_time.hpp): walls only
+//               where they cost less than the region's own tree on the Cura route AND on the
+//               PrusaSlicer route (which slicer the user has is not known); the tree is grown
+//               from the region's samples alone and counted by the caller's `tree_count`
+//     coverage  a sample is handed to the walls when every point of its lattice cell on its own
+//               stretch of surface lies within kWallReach of a wall's top; the others stay with
+//               the tree (tips at the ends and rims the walls do not reach).
+//
+// Example: a 50 x 10 mm roof 5 mm over the bed, span 3.4 mm: 4 rows of 50 mm, 3 joins, one
+// meander; the roof's 80 samples all go to the walls.
+#pragma once
+
+#include <functional>
+#include <vector>
+
+#include "core/geometry.hpp"
+#include "core/params.hpp"
+#include "overhang/overhang.hpp"
+
+namespace cs {
+
+class ModelQuery;
+
+// A straight piece of wall, `from` to `to` (horizontal; their z unused), its foot flat at `bottom`
+// (0 on the bed, or a gap above a level face of the model) and its top flat at `top` (a gap under
+// the lowest point of the ceiling over it). Under a round ceiling a row is a staircase of pieces
+// that share the station between them. The wall is `thickness` wide across from-to: the wall
+// thickness, or what the strength rule asks of a column that tall (core/rules.hpp), whichever is
+// more, so each piece stands on its own as `check` judges it.
+struct CeilingWall {
+    Vec3 from, to;
+    double bottom = 0, top = 0;
+    bool join = false;  // joins two rows (it ends inside the rows it joins)
+    double thickness = 0.5;
+};
+
+// What a tree grown from some samples alone would give a slicer to print, counted as
+// tree/slicer_cost.hpp counts it (summed over the layers). The caller grows it: ceilings come before
+// the tree.
+struct TreeCount {
+    double island_layers = 0, outline_mm = 0, hop_mm = 0;
+};
+using TreeCounter = std::function<TreeCount(const std::vector<Sample>&)>;
+
+struct Ceilings {
+    std::vector<CeilingWall> walls;
+    std::vector<Sample> rest;       // samples left to the tree, in the input's order
+    std::size_t regions = 0;        // regions given walls
+    std::size_t covered = 0;        // samples the walls carry
+    // The estimates of the chosen regions, seconds on the Cura and PrusaSlicer routes.
+    double tree_cura_s = 0, tree_prusa_s = 0, walls_cura_s = 0, walls_prusa_s = 0;
+};
+
+// A region whose walls would enter one of the user's `support_blockers` (placed-model coordinates)
+// keeps its tree (the tree routes around blockers; a wall cannot).
+Ceilings support_ceilings(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
+                          const TreeCounter& tree_count, const std::vector<Box3>& support_blockers = {});
+
+// Closed, outward-facing mesh of one wall: a box, w.thickness wide across from-to, bottom to top,
+// its faces as triangles.
+Mesh wall_mesh(const CeilingWall& w);
+
+// How thick a wall `height` tall is built: the wall thickness, or the strength rule's width for a
+// column that tall, whichever is more.
+double wall_thickness_for(const Params& p, double height);
+
+}  // namespace cs

@@ -1,0 +1,169 @@
+// ceilings/: walls under ceilings low over the bed, and how `check` judges a wall's long top.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ceilings/ceilings.hpp"
+#include "check/check.hpp"
+#include "overhang/overhang.hpp"
+#include "pipeline/pipeline.hpp"
+#include "query/model_query.hpp"
+#include "shapes.hpp"
+
+using namespace cs;
+
+namespace {
+
+struct Walled {
+    Mesh model;
+    Params p;
+    OverhangSamples samples;
+    Ceilings ceilings;
+};
+
+// A tree priced out of reach (a thousand island-layers a sample): every region where walls fit gets
+// them, so the tests of the walls' geometry do not hang on the time model.
+TreeCount dear_tree(const std::vector<Sample>& samples) { return {1000.0 * samples.size(), 0, 0}; }
+
+// `real`: the pipeline's counter (the region's own tree, grown and counted) instead of dear_tree.
+Walled walled(const Mesh& model, Params p = {}, bool real = false) {
+    Walled w{model, p, {}, {}};
+    ModelQuery q(w.model);
+    w.samples = sample_overhangs(w.model, {p.critical_angle, p.sampling_distance, p.layer_height, touching_space(p)}, &q);
+    w.ceilings = support_ceilings(q, w.samples.samples, p, real ? tree_counter(q, p) : TreeCounter(dear_tree));
+    return w;
+}
+
+// A lid: a 40 x 30 x 2 plate 3 mm over the bed (z 3..5) on four 2 x 2 corner posts.
+Mesh low_lid() {
+    test::CellGrid g({-20, -18, 18, 20}, {-15, -13, 13, 15}, {0, 3, 5});
+    for (double x : {-20.0, 18.0})
+        for (double y : {-15.0, 13.0}) g.fill({x, y, 0}, {x + 2, y + 2, 3});
+    g.fill({-20, -15, 3}, {20, 15, 5});
+    return g.mesh();
+}
+
+Mesh walls_mesh(const std::vector<CeilingWall>& walls) {
+    Mesh m;
+    for (const auto& w : walls) append(m, wall_mesh(w));
+    return m;
+}
+
+}  // namespace
+
+TEST(Ceilings, ABridgeDeckGetsOneMeanderThatCarriesItsSamples) {
+    Walled w = walled(test::bridge_shape());
+    ASSERT_FALSE(w.ceilings.walls.empty());
+    EXPECT_EQ(w.ceilings.regions, 1u);
+    std::size_t rows = 0, joins = 0;
+    for (const auto& wall : w.ceilings.walls) (wall.join ? joins : rows) += 1;
+    EXPECT_GE(rows, 2u);
+    EXPECT_EQ(joins, rows - 1);  // one meander: every row joined to the next
+    EXPECT_GT(w.ceilings.covered, w.samples.samples.size() / 2);
+    EXPECT_EQ(w.ceilings.covered + w.ceilings.rest.size(), w.samples.samples.size());
+    for (const auto& wall : w.ceilings.walls) {
+        EXPECT_NEAR(wall.top, 8 - w.p.gap, 1e-6);  // a gap under the deck, all along
+        EXPECT_EQ(wall.bottom, 0);                 // on the bed
+        for (const Vec3& t : {wall.from, wall.to}) {
+            EXPECT_LT(std::abs(t.x), 8 - tip_side_clearance(w.p) + 1e-9);  // clear of the pillars
+            EXPECT_LT(std::abs(t.y), 3);
+        }
+    }
+}
+
+TEST(Ceilings, WallsOnlyWhereTheTimeModelFindsThemFasterOnBothSlicers) {
+    // A wide lid low over the bed: its tips stay islands down to the bed, the walls are a few long
+    // lines a layer; both routes print the walls faster.
+    Walled lid = walled(low_lid(), {}, true);
+    ASSERT_EQ(lid.ceilings.regions, 1u);
+    EXPECT_LT(lid.ceilings.walls_cura_s, lid.ceilings.tree_cura_s);
+    EXPECT_LT(lid.ceilings.walls_prusa_s, lid.ceilings.tree_prusa_s);
+    EXPECT_GT(lid.ceilings.covered, lid.samples.samples.size() / 2);
+    // The bridge's short deck 8 mm up: its few tips merge into trunks soon, and CuraEngine draws each
+    // wall twice (a closed loop); the tree is kept.
+    Walled bridge = walled(test::bridge_shape(), {}, true);
+    EXPECT_EQ(bridge.ceilings.regions, 0u);
+    EXPECT_TRUE(bridge.ceilings.walls.empty());
+    EXPECT_EQ(bridge.ceilings.rest.size(), bridge.samples.samples.size());
+}
+
+TEST(Ceilings, RowsAreAtMostTheSpanApart) {
+    Params p;
+    p.ceiling_span = 2.0;
+    Walled w = walled(test::bridge_shape(), p);
+    std::vector<double> ys;
+    for (const auto& wall : w.ceilings.walls)
+        if (!wall.join) ys.push_back(wall.from.y);
+    std::sort(ys.begin(), ys.end());
+    ASSERT_GE(ys.size(), 2u);
+    for (std::size_t i = 1; i < ys.size(); ++i) EXPECT_LE(ys[i] - ys[i - 1], p.ceiling_span + 1e-9);
+}
+
+TEST(Ceilings, SpanZeroAndTheColumnsStrategyLeaveEverySampleToTheTree) {
+    Params p;
+    p.ceiling_span = 0;
+    Walled w = walled(test::bridge_shape(), p);
+    EXPECT_TRUE(w.ceilings.walls.empty());
+    EXPECT_EQ(w.ceilings.rest.size(), w.samples.samples.size());
+    Params c;
+    c.strategy = Strategy::columns;
+    EXPECT_TRUE(walled(test::bridge_shape(), c).ceilings.walls.empty());
+}
+
+TEST(Ceilings, WallsStandOnTheBedOrALevelFloorOfTheModel) {
+    Walled w = walled(test::cantilever_over_box());
+    for (const auto& wall : w.ceilings.walls) {
+        if (wall.bottom > 0) {
+            EXPECT_NEAR(wall.bottom, 5 + w.p.gap, 1e-6);  // on the box's top, a gap above it
+            continue;
+        }
+        for (const Vec3& t : {wall.from, wall.to}) {
+            const bool over_box = t.x > 12 - 0.5 && t.x < 24 + 0.5 && t.y > 2 - 0.5 && t.y < 8 + 0.5;
+            EXPECT_FALSE(over_box) << "a wall on the bed at (" << t.x << ", " << t.y << ") stands in the box";
+        }
+    }
+}
+
+TEST(Ceilings, WallMeshesAreClosedAndFaceOutward) {
+    CeilingWall wall{{0, 0, 0}, {1.5, 0, 0}, 0, 5};
+    Mesh m = wall_mesh(wall);
+    EXPECT_TRUE(is_closed_and_consistent(m));
+    EXPECT_NEAR(signed_volume(m), 0.5 * 1.5 * 5, 1e-9);
+    CeilingWall on_model{{2, 0, 0}, {2, 2, 0}, 1.2, 3, true};
+    EXPECT_TRUE(is_closed_and_consistent(wall_mesh(on_model)));
+    EXPECT_NEAR(signed_volume(wall_mesh(on_model)), 0.5 * 2 * 1.8, 1e-9);
+}
+
+TEST(Ceilings, CheckPassesTheBridgeWithWallsAndTheTreeForTheRest) {
+    Walled w = walled(test::bridge_shape());
+    ASSERT_FALSE(w.ceilings.walls.empty());
+    Supports s = build_supports(w.model, w.ceilings.rest, w.p);
+    Mesh all = s.mesh;
+    append(all, walls_mesh(w.ceilings.walls));
+    CheckResult r = check_supports(w.model, all, w.p, {});
+    EXPECT_TRUE(r.ok()) << r.summary();
+    // Without the walls the deck is not covered: the walls' tops are its contacts.
+    CheckResult bare = check_supports(w.model, s.mesh, w.p, {});
+    EXPECT_FALSE(bare.coverage_ok());
+}
+
+// check/: a long top is a contact along its whole length.
+TEST(CheckWalls, AWallsLongTopIsAContactAlongItsWholeLength) {
+    Mesh model = test::bridge_shape();
+    Params p;
+    // One wall along x under the deck's middle, a gap below it: points near it along its whole
+    // length are covered, points far across are not.
+    CeilingWall wall{{-7.5, 0, 0}, {7.5, 0, 0}, 0, 8 - p.gap};
+    CheckResult r = check_supports(model, wall_mesh(wall), p, {});
+    EXPECT_EQ(r.contacts, 1u);
+    EXPECT_EQ(r.fused_contacts, 0u);
+    EXPECT_EQ(r.open_bodies + r.inward_bodies + r.steep_bodies + r.ungrounded_bodies + r.penetrating_bodies, 0u);
+    EXPECT_GT(r.covered, 20u);
+    EXPECT_FALSE(r.coverage_ok());  // |y| near 3 is beyond reach of one wall at y = 0
+    // Lowered by two millimetres it holds nothing up.
+    CeilingWall low{{-7.5, 0, 0}, {7.5, 0, 0}, 0, 6};
+    EXPECT_EQ(check_supports(model, wall_mesh(low), p, {}).contacts, 0u);
+    // Raised into the deck's gap it is fused along its length.
+    CeilingWall fused{{-7.5, 0, 0}, {7.5, 0, 0}, 0, 8 - 0.05};
+    EXPECT_EQ(check_supports(model, wall_mesh(fused), p, {}).fused_contacts, 1u);
+}
