@@ -203,18 +203,26 @@ TEST(ThreeMF, PrusaSupportsAreAnNProfileVolumeAndASolidVolumeEachWithItsThinWall
     const std::vector<Body> bodies = {{BodyKind::Strut, Profile::N, {0, 0, 0}, {0, 0, 4}, 2.0, 2.0},
                                       {BodyKind::Tip, Profile::Square, {0, 0, 3.8}, {0, 0, 5.8}, 2.0, 0.8},
                                       {BodyKind::Strut, Profile::Square, {3, 0, 0}, {3, 0, 5.8}, 1.0, 1.0}};
-    const Mesh supports = bodies_mesh(bodies, p.wall_thickness);
-    const Mesh n_profile = bodies_mesh(bodies, p.wall_thickness, Profile::N);
+    // A ceiling wall (a 0.5 mm fin) prints as a thin wall, in the N-profile's volume.
+    const CeilingWall wall{{-4, 3, 0}, {4, 3, 0}, 0, 5.8};
+    Mesh supports = bodies_mesh(bodies, p.wall_thickness);
+    append(supports, wall_mesh(wall));
+    Mesh n_profile = bodies_mesh(bodies, p.wall_thickness, Profile::N);
+    append(n_profile, wall_mesh(wall));
     const Mesh solid = bodies_mesh(bodies, p.wall_thickness, Profile::Square);
     ASSERT_EQ(n_profile.faces.size() + solid.faces.size(), supports.faces.size());
     ASSERT_FALSE(n_profile.faces.empty() || solid.faces.empty());
-    auto prusa_3mf = [&](const std::vector<Body>& known) {
+    Supports built;
+    built.bodies = bodies;
+    built.walls = {wall};
+    built.mesh = supports;
+    auto prusa_3mf = [&](const Supports* known) {
         for (const OutputFile& f : support_mesh_files("part", model, supports, known, p))
             if (f.name == "part.prusa.3mf") return unzip(f.content());
         ADD_FAILURE() << "no part.prusa.3mf";
         return std::map<std::string, std::string>{};
     };
-    auto files = prusa_3mf(bodies);
+    auto files = prusa_3mf(&built);
     auto volumes = elements(files["Metadata/Slic3r_PE_model.config"], "volume");
     ASSERT_EQ(volumes.size(), 3u);
     auto triangles = [&](const std::string& v) { return std::stoi(attribute(v, "lastid")) - std::stoi(attribute(v, "firstid")) + 1; };
@@ -237,7 +245,7 @@ TEST(ThreeMF, PrusaSupportsAreAnNProfileVolumeAndASolidVolumeEachWithItsThinWall
     for (size_t i = 0; i < n.size(); ++i)
         if (n[i].first != "thin_walls") EXPECT_EQ(n[i], s[i]);
     // Without the bodies (apply's rendered union): one supports volume, as the N-profile prints.
-    volumes = elements(prusa_3mf({})["Metadata/Slic3r_PE_model.config"], "volume");
+    volumes = elements(prusa_3mf(nullptr)["Metadata/Slic3r_PE_model.config"], "volume");
     ASSERT_EQ(volumes.size(), 2u);
     EXPECT_EQ(triangles(volumes[1]), static_cast<int>(supports.faces.size()));
     EXPECT_EQ(count(volumes[1], "key=\"thin_walls\" value=\"1\""), 1);
