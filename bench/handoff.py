@@ -2,7 +2,8 @@
 """Every route from our supports to a slicer, against the slicers' own supports, in one run and one profile.
 
 usage: bench/handoff.py [--bin build/generator/clever-support] [--models a,b,PATH@80mm,...] [--jobs 2] [--work DIR]
-                        [--out bench/results] [--stem handoff] [--routes k1,k2] [--keep-gcode] [--report-only]
+                        [--out bench/results] [--stem handoff] [--routes k1,k2] [--prusa-set KEY=VALUE ...]
+                        [--keep-gcode] [--report-only]
        bench/handoff.py --validation   the validation parts (bench/validation, never tuned on) and the five
                                         examples at 80 mm -> <out>/validation.{json,md,svg}
        bench/handoff.py --tuning       the shared models (the tuning set) -> <out>/tuning.{json,md,svg}
@@ -173,7 +174,10 @@ def slice_route(args, key, name, tree, columns, work):
     models, meshes = ins
     out_dir = os.path.join(work, name, "slices", key)
     cmd = [sys.executable, SLICE_PY, "--slicer", slicer, "--support", support, "--json", "--timeout",
-           str(args.slice_timeout), "--out-dir", out_dir] + sum((["--support-mesh", m] for m in meshes), []) + models
+           str(args.slice_timeout), "--out-dir", out_dir] + sum((["--support-mesh", m] for m in meshes), [])
+    if slicer == "prusa":  # e.g. perimeter_generator=classic: on every PrusaSlicer route, bare model included
+        cmd += sum((["--set", kv] for kv in args.prusa_set), [])
+    cmd += models
     p, cpu = cpu_seconds_of(cmd, args.slice_timeout + 120)
     if p is None or p.returncode != 0:
         return {"error": (p.stderr.strip()[-600:] if p else "timeout"), "cmd": " ".join(cmd)}
@@ -341,6 +345,8 @@ def report_md(data):
          f"_Run {st['date']} on {st['nproc']} cores (load average at start {st['load']}), git commit "
          f"`{st['commit']}`, {st['jobs']} slices at a time; CPU total {st.get('cpu_total_s', 0):.0f} s "
          f"(generator + slicers), wall {st.get('wall_total_s', 0) / 60:.0f} min._\n",
+         (f"PrusaSlicer settings on top of the profile, on every PrusaSlicer route: "
+          f"{', '.join('`' + kv + '`' for kv in st['prusa_set'])}.\n" if st.get("prusa_set") else ""),
          "Profile: bench/slicers/profile.json (both slicers). Models: shared models at their benchmark.json scale "
          "(others at the scale their row gives), orientation kept. *Support* numbers are the route minus the bare model sliced in the same slicer "
          "and run: grams, minutes, retractions, travel (m). *Of them support→support*: retractions on a travel from one "
@@ -684,12 +690,19 @@ def main():
     ap.add_argument("--reparse", action="store_true",
                     help="with --report-only: parse the G-codes kept by --keep-gcode in --work again (gcode_stats, "
                          "gcode_time) and re-read the generator's reports, then redo the tables")
+    ap.add_argument("--prusa-set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a PrusaSlicer setting on top of profile.json for every PrusaSlicer route (repeatable), "
+                         "e.g. perimeter_generator=classic: what a user who picked the classic perimeters gets")
     ap.add_argument("--keep-gcode", action="store_true",
                     help="keep each G-code gzipped beside its slice (<work>/<model>/slices/<key>/out.gcode.gz)")
     args = ap.parse_args()
     stem = args.stem or ("validation" if args.validation else "tuning" if args.tuning else "handoff")
     jpath, mpath = os.path.join(args.out, stem + ".json"), os.path.join(args.out, stem + ".md")
     svg = os.path.join(args.out, stem + ".svg")
+    bad = [kv for kv in args.prusa_set if "=" not in kv or kv.startswith("=")]
+    if bad:
+        print(f"handoff.py: --prusa-set needs KEY=VALUE, got {', '.join(bad)}", file=sys.stderr)
+        return 2
     routes = list(ROUTES)
     if args.routes:
         want = {k.strip() for k in args.routes.split(",") if k.strip()}
@@ -718,7 +731,7 @@ def main():
     data = {"stamp": {"date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC"),
                       "nproc": os.cpu_count(), "load": " ".join(open("/proc/loadavg").read().split()[:3]),
                       "commit": commit, "jobs": args.jobs, "profile": "bench/slicers/profile.json",
-                      "routes": routes},
+                      "routes": routes, "prusa_set": args.prusa_set},
             "models": {}}
     cpu_total = 0.0
     os.makedirs(args.work, exist_ok=True)

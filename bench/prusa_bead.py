@@ -11,13 +11,14 @@ handoff.py's PrusaSlicer sliced/mesh (support filament over our support mesh vol
   struts), drawn by scad_templates/clever_support.scad's cs_prism (OpenSCAD renders them, so the
   geometry is the generator's own, not a copy);
 * a closed square tube with the same walls, the closed profile we did not choose;
-* each with the settings our .prusa.3mf gives the supports volume (read from a .prusa.3mf the
-  generator writes for examples/models/bird.stl, so they are the generator's own too), under
-  PrusaSlicer's default Arachne perimeter generator and, for reference, its classic one.
+* each with the settings our .prusa.3mf gives the volume it belongs to: the N-profile struts' or the
+  solid bodies' (read from a .prusa.3mf the generator writes for examples/models/bird.stl, so they
+  are the generator's own too), under PrusaSlicer's default Arachne perimeter generator and its
+  classic one.
 
-PrusaSlicer takes `perimeter_generator` per object only: the classic rows cannot be had for the
-supports volume without changing how the user's model prints. Output: results/prusa_bead.md
-and .json.
+PrusaSlicer takes `perimeter_generator` per object only: the user picks it, and the supports
+volumes carry the thin_walls that prints them under classic. Output: results/prusa_bead.md and
+.json.
 """
 import argparse
 import datetime
@@ -80,19 +81,24 @@ def render(profile, width, work):
 
 
 def support_volume_settings(binary, work):
-    """The settings the generator gives the supports volume of its .prusa.3mf."""
+    """The settings the generator gives the supports volumes of its .prusa.3mf: {"N": the N-profile
+    struts' volume, "solid": the solid bodies' volume (tips, feet, square struts)}."""
     out = os.path.join(work, "bird")
     subprocess.run([binary, os.path.join(REPO, "examples", "models", "bird.stl"), "--out", out, "--no-timings"],
                    check=True, capture_output=True, timeout=600)
     path = os.path.join(out, "bird.prusa.3mf")
     with zipfile.ZipFile(path) as z:
         config = z.read("Metadata/Slic3r_PE_model.config").decode()
-    volumes = re.findall(r"<volume [^>]*>(.*?)</volume>", config, re.S)
-    supports = [v for v in volumes if 'key="perimeters"' in v]  # the model volume carries no settings
-    if len(supports) != 1:
-        raise SystemExit("prusa_bead.py: no supports volume in %s" % path)
-    settings = dict(re.findall(r'key="([a-z_0-9]+)" value="([^"]*)"', supports[0]))
-    return {k: v for k, v in settings.items() if k not in ("name", "volume_type")}
+    found = {}
+    for v in re.findall(r"<volume [^>]*>(.*?)</volume>", config, re.S):
+        settings = dict(re.findall(r'key="([a-z_0-9]+)" value="([^"]*)"', v))
+        name = settings.get("name", "")
+        kind = "solid" if name.endswith("supports, solid") else "N" if name.endswith("supports") else None
+        if kind:
+            found[kind] = {k: val for k, val in settings.items() if k not in ("name", "volume_type")}
+    if set(found) != {"N", "solid"}:
+        raise SystemExit("prusa_bead.py: %s has not the two supports volumes (N-profile, solid)" % path)
+    return found
 
 
 def main():
@@ -118,7 +124,7 @@ def main():
             stl, mesh_mm3 = render(name, width, work)
             row = {"profile": name, "width_mm": width, "mesh_mm3": mesh_mm3}
             for gen in GENERATORS:
-                extra = dict(volume, perimeter_generator=gen)
+                extra = dict(volume["solid" if name == "solid" else "N"], perimeter_generator=gen)
                 try:
                     r = S.slice_prusa(stl, "none", profile, work, 600, extra=extra)
                     row[gen] = {"sliced_over_mesh": r["filament_mm3"] / mesh_mm3, "seconds": r["print_time_s"]}
@@ -143,14 +149,22 @@ def bead_fraction(w, h):
     return (w - h * (1 - math.pi / 4)) / w
 
 
+def volume_settings_md(volumes):
+    """The two supports volumes' settings in words; runs before 2026-11-26 stored one volume's."""
+    if "N" not in volumes:
+        return ", ".join("%s=%s" % kv for kv in sorted(volumes.items()))
+    return "; ".join("%s: %s" % (title, ", ".join("%s=%s" % kv for kv in sorted(volumes[key].items())))
+                     for key, title in (("N", "N-profile struts and tubes"), ("solid", "solid squares")))
+
+
 def report_md(data):
     s = ["# How much of one strut PrusaSlicer 2.5 prints (bench/prusa_bead.py)", "",
          "_Run %s, git commit `%s`._" % (data["stamp"], data["commit"]), "",
          "One vertical strut, %g mm tall, %g mm walls, sliced alone with the bench profile plus the settings "
-         "our .prusa.3mf gives the supports volume (%s). *Sliced/mesh*: filament PrusaSlicer lays down over the "
+         "our .prusa.3mf gives the volume it belongs to (%s). *Sliced/mesh*: filament PrusaSlicer lays down over the "
          "strut's volume; *s*: its print time estimate. Arachne is PrusaSlicer's default and what a user gets; "
-         "classic is set per object only, so it would change how the user's model prints too." % (
-             data["height_mm"], data["wall_mm"], ", ".join("%s=%s" % kv for kv in sorted(data["volume_settings"].items()))),
+         "classic is set per object only: the user's choice." % (
+             data["height_mm"], data["wall_mm"], volume_settings_md(data["volume_settings"])),
          "",
          "PrusaSlicer meters a bead of width w and height h as a rounded rectangle, h (w - h (1 - pi/4)) per mm "
          "(its Flow::mm3_per_mm): %.3f of w x h for one %g mm wall at %g mm layers, before the ends of open lines "

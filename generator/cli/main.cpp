@@ -435,7 +435,8 @@ int cmd_apply(const ApplyArgs& a) {
         throw;
     }
     std::remove(ro.output.c_str());
-    write_outputs(dir, support_mesh_files(name, model, supports, p));
+    // The render is one union, not bodies: the .prusa.3mf gets one supports volume.
+    write_outputs(dir, support_mesh_files(name, model, supports, /*built=*/nullptr, p));
     if (!a.quiet) {
         std::printf("applied %s (rendered in %.1f s): rewrote %s/%s.supports.stl, .supported.stl, .3mf, .prusa.3mf\n",
                     a.scad.c_str(), rr.seconds, dir.c_str(), name.c_str());

@@ -64,17 +64,35 @@ std::vector<std::uint32_t> trace_loop(const PatchEdges& p, std::uint32_t start, 
     }
 }
 
+// What the loop tests below share, computed once per loop: its bounding box and its Newell normal
+// (twice its area vector).
+struct LoopShape {
+    Vec3 lo, hi;
+    Vec3 normal;
+};
+
+LoopShape loop_shape(const std::vector<Vec3>& pts) {
+    LoopShape s{pts[0], pts[0], {0, 0, 0}};
+    for (size_t i = 0; i < pts.size(); ++i) {
+        const Vec3 &a = pts[i], &b = pts[(i + 1) % pts.size()];
+        const Vec3& n = s.normal;
+        s.normal = {n.x + (a.y - b.y) * (a.z + b.z), n.y + (a.z - b.z) * (a.x + b.x), n.z + (a.x - b.x) * (a.y + b.y)};
+        s.lo = {std::min(s.lo.x, a.x), std::min(s.lo.y, a.y), std::min(s.lo.z, a.z)};
+        s.hi = {std::max(s.hi.x, a.x), std::max(s.hi.y, a.y), std::max(s.hi.z, a.z)};
+    }
+    return s;
+}
+
+// The loop's largest side of its bounding box.
+double extent_of(const LoopShape& s) { return std::max({s.hi.x - s.lo.x, s.hi.y - s.lo.y, s.hi.z - s.lo.z}); }
+
 // Whether two points of the loop (not only neighbours) are closer than a billionth of the loop's
 // extent. CGAL's hole triangulations work in inexact doubles: such a loop (say, vertices a
 // denormal apart, as a corrupt file gives) crashed its constrained Delaunay path and hung its 3D
 // Delaunay path (found by fuzz_ply, fuzz_obj and fuzz_stl). A real hole has no such points, so the
 // loop is left open, as the loops CGAL refuses are.
-bool has_near_duplicates(const std::vector<Vec3>& pts) {
-    Vec3 lo = pts[0], hi = pts[0];
-    for (const Vec3& q : pts) {
-        lo = {std::min(lo.x, q.x), std::min(lo.y, q.y), std::min(lo.z, q.z)};
-        hi = {std::max(hi.x, q.x), std::max(hi.y, q.y), std::max(hi.z, q.z)};
-    }
+bool has_near_duplicates(const std::vector<Vec3>& pts, const LoopShape& shape) {
+    const Vec3 &lo = shape.lo, &hi = shape.hi;
     const double tol = 1e-9 * std::max({1.0, hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
     std::vector<Vec3> by_x = pts;
     std::sort(by_x.begin(), by_x.end(), [](const Vec3& a, const Vec3& b) { return a.x < b.x; });
@@ -84,29 +102,19 @@ bool has_near_duplicates(const std::vector<Vec3>& pts) {
     return false;
 }
 
-// Whether the loop encloses no area seen from any side: its Newell normal (twice the area vector)
-// vanishes next to the square of its extent, as for points along one line. CGAL projects such a
-// loop along that normal for its 2D triangulation, and a zero normal crashed it (fuzz_obj).
-bool encloses_no_area(const std::vector<Vec3>& pts) {
-    Vec3 n{0, 0, 0}, lo = pts[0], hi = pts[0];
-    for (size_t i = 0; i < pts.size(); ++i) {
-        const Vec3 &a = pts[i], &b = pts[(i + 1) % pts.size()];
-        n = {n.x + (a.y - b.y) * (a.z + b.z), n.y + (a.z - b.z) * (a.x + b.x), n.z + (a.x - b.x) * (a.y + b.y)};
-        lo = {std::min(lo.x, a.x), std::min(lo.y, a.y), std::min(lo.z, a.z)};
-        hi = {std::max(hi.x, a.x), std::max(hi.y, a.y), std::max(hi.z, a.z)};
-    }
-    const double extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
+// Whether the loop encloses no area seen from any side: its Newell normal vanishes next to the
+// square of its extent, as for points along one line. CGAL projects such a loop along that normal
+// for its 2D triangulation, and a zero normal crashed it (fuzz_obj).
+bool encloses_no_area(const LoopShape& shape) {
+    const Vec3& n = shape.normal;
+    const double extent = extent_of(shape);
     return std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z) <= 1e-9 * extent * extent;
 }
 
 // Whether the loop, seen along its Newell normal's main axis, crosses or touches itself: then it is
 // no polygon for a 2D triangulation.
-bool crosses_itself(const std::vector<Vec3>& pts) {
-    Vec3 n{0, 0, 0};
-    for (size_t i = 0; i < pts.size(); ++i) {
-        const Vec3 &a = pts[i], &b = pts[(i + 1) % pts.size()];
-        n = {n.x + (a.y - b.y) * (a.z + b.z), n.y + (a.z - b.z) * (a.x + b.x), n.z + (a.x - b.x) * (a.y + b.y)};
-    }
+bool crosses_itself(const std::vector<Vec3>& pts, const LoopShape& shape) {
+    const Vec3& n = shape.normal;
     const double ax = std::abs(n.x), ay = std::abs(n.y), az = std::abs(n.z);
     std::vector<std::pair<double, double>> q;  // the loop with its main axis dropped
     for (const Vec3& a : pts)
@@ -144,10 +152,11 @@ std::vector<Triangle> patch_for(const Mesh& m, const PatchEdges& p, const std::v
     if (n < 3) return {};
     std::vector<Vec3> corners;
     for (std::uint32_t v : loop) corners.push_back(m.vertices[v]);
-    if (has_near_duplicates(corners) || encloses_no_area(corners)) return {};
+    const LoopShape shape = loop_shape(corners);
+    if (has_near_duplicates(corners, shape) || encloses_no_area(shape)) return {};
     // CGAL checks this itself before its 2D path, yet crashed on a loop that fails it (fuzz_obj):
     // such a loop (a hole bent round an edge, say) goes to its 3D path only.
-    const bool flat_path = !crosses_itself(corners);
+    const bool flat_path = !crosses_itself(corners, shape);
     std::vector<Point> points, thirds;
     for (std::uint32_t v : loop) {
         const Vec3 &a = m.vertices[v], &c = m.vertices[p.third[v]];

@@ -35,10 +35,15 @@ std::string report_json(const Result& r, const Job& job);
 std::vector<OutputFile> output_files(const Result& r, const Job& job, const std::string& version);
 
 // The four files that carry the supports: <name>.supported.stl, .supports.stl, .3mf (Cura) and
-// .prusa.3mf (`p` gives the PrusaSlicer volume's settings). output_files writes them after a run,
-// `clever-support apply` from a rendered .scad. The meshes and `p` must outlive the files.
+// .prusa.3mf (`p` gives the PrusaSlicer volumes' settings). `built` is what `supports` was made of
+// (its bodies, then its ceiling walls): the .prusa.3mf carries what prints as thin walls (N-profile
+// struts, ceiling walls) and the solid bodies (tips, feet, pillars, square struts) as two volumes
+// (see prusa_support_volume_settings). Null when not known (`clever-support apply` has only the
+// .scad's rendered union): then `supports` is one volume with the N-profile's settings.
+// output_files writes them after a run, apply from a rendered .scad. The meshes, `built` and `p`
+// must outlive the files.
 std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& model, const Mesh& supports,
-                                           const Params& p);
+                                           const Supports* built, const Params& p);
 
 // Creates `dir` if needed and writes all files atomically as a set. Throws OutputError.
 void write_outputs(const std::string& dir, const std::vector<OutputFile>& files);

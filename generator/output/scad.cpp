@@ -181,7 +181,7 @@ std::string tree_data(const Supports& sp) {
     // Numbered after the struts: omit_struts leaves a pillar out by that number.
     for (size_t i = 0; i < sp.grown_pillars.size(); ++i)
         pillars.push_back({std::to_string(sp.grown_struts.size() + i),
-                           "[" + pt(sp.grown_pillars[i].top) + ", " + pt(sp.grown_pillars[i].bottom) + "]"});
+                           fmt::format("[{}, {}]", pt(sp.grown_pillars[i].top), pt(sp.grown_pillars[i].bottom))});
 
     std::string s = "// The tree. Node kinds (comments) are derived by the library from the lists below.\n";
     s += "// [x, y, z] of every node\n" + record_list("cs_nodes", nodes);

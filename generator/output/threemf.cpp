@@ -209,12 +209,22 @@ const Settings& cura_support_mesh_settings() {
     return settings;
 }
 
-Settings prusa_support_volume_settings(const Params& p) {
+Settings prusa_support_volume_settings(const Params& p, PrusaSupportVolume volume) {
     // One bead a little wider than the N-profile's wall: Arachne then prints each wall as a single
     // line that fills it, and a d_min strut as one loop with no hole. Measured on nefertiti, spot and
     // stanford_bunny at benchmark scale: support filament / mesh volume 0.73-0.84 -> 0.77-0.88 at the
     // same print time (within 1.5 %); 0.6 mm changed nothing more.
     const std::string line_width = fmt::format("{:.2f}", kPrusaStrutLineOverWall * p.wall_thickness);
+    // PrusaSlicer's classic perimeter generator (perimeter_generator = classic, per object only, so
+    // the user's choice) prints a region one bead wide in one of two ways (PerimeterGenerator.cpp):
+    // - thin_walls on (its default; off in Prusa's own printer presets): a loop only where the
+    //   region is wider than about 1.8 beads (0.96 mm at 0.55 mm), and a thin wall (medial axis)
+    //   only where it is at least twice as long as wide. An N-profile's 0.5 mm walls print so; a
+    //   tip's top, a 0.8 mm square, is neither and was left out (6-13 % of the body layers).
+    // - thin_walls off: a loop wherever the region is wider than one bead; the N's walls, thinner
+    //   than a bead, vanish.
+    // So each volume gets the one that prints it, whatever the user's preset says.
+    const char* thin_walls = volume == PrusaSupportVolume::NProfile ? "1" : "0";
     return {{"perimeters", "1"},
             {"fill_density", "0%"},
             {"top_solid_layers", "0"},
@@ -225,7 +235,8 @@ Settings prusa_support_volume_settings(const Params& p) {
             {"external_perimeter_speed", kPrusaSupportSpeed},
             {"small_perimeter_speed", kPrusaSupportSpeed},
             {"perimeter_extrusion_width", line_width},
-            {"external_perimeter_extrusion_width", line_width}};
+            {"external_perimeter_extrusion_width", line_width},
+            {"thin_walls", thin_walls}};
 }
 
 Settings cura_support_line_settings(const Params& p) {

@@ -8,8 +8,9 @@
 // one and refuses a model standing on near-point feet whose supports are another object. So:
 //   encode_3mf_cura   model and supports as components of one group; the supports object carries
 //                     Cura's per-object settings support_mesh=True, support_mesh_drop_down=False
-//   encode_3mf_prusa  one object with two ModelPart volumes; the supports volume carries
-//                     per-volume settings that print it like support (one perimeter, no infill)
+//   encode_3mf_prusa  one object with ModelPart volumes: the model, and the supports (N-profile
+//                     struts, solid bodies) with per-volume settings that print them like support
+//                     (one perimeter, no infill)
 #pragma once
 
 #include <string>
@@ -37,10 +38,16 @@ struct NamedMesh {
 // areas under 2 or 5 mm2 (creality_base and about ten other bases), with or without our profile.
 const Settings& cura_support_mesh_settings();
 
+// The two supports volumes of the .prusa.3mf: the N-profile struts, and the solid bodies (tips,
+// contact tips, feet, pillars and the struts too narrow for an N), whose cross-sections are squares.
+enum class PrusaSupportVolume { NProfile, Solid };
+
 // PrusaSlicer 2.5 per-volume settings that make struts print like its supports: one perimeter a
 // little wider than the N-profile wall, no infill, a solid first layer (the feet), perimeters at
-// the support speed. `p` gives the wall thickness.
-Settings prusa_support_volume_settings(const Params& p);
+// the support speed; and the thin_walls each volume needs under PrusaSlicer's classic perimeter
+// generator (Arachne, the default, ignores it). `p` gives the wall thickness.
+// Example: prusa_support_volume_settings(p, PrusaSupportVolume::Solid) holds {"thin_walls", "0"}.
+Settings prusa_support_volume_settings(const Params& p, PrusaSupportVolume volume);
 
 // Cura's global / per-extruder support settings under which a support mesh prints like its tree
 // supports (they cannot be set per object; CuraEngine takes them from the support extruder even

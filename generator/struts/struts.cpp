@@ -197,4 +197,11 @@ Mesh bodies_mesh(const std::vector<Body>& bodies, double wall) {
     return all;
 }
 
+Mesh bodies_mesh(const std::vector<Body>& bodies, double wall, Profile only) {
+    Mesh some;
+    for (const auto& b : bodies)
+        if (b.profile == only) append(some, body_mesh(b, wall));
+    return some;
+}
+
 }  // namespace cs

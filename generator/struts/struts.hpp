@@ -81,4 +81,8 @@ Mesh body_mesh(const Body& b, double wall);
 // All bodies in one mesh (separate closed shells that overlap where they join).
 Mesh bodies_mesh(const std::vector<Body>& bodies, double wall);
 
+// The bodies of one profile only, in one mesh, in body order. Example: the solid bodies of a tree
+// (its tips, feet, pillars, square struts) are bodies_mesh(bodies, wall, Profile::Square).
+Mesh bodies_mesh(const std::vector<Body>& bodies, double wall, Profile only);
+
 }  // namespace cs

@@ -110,10 +110,11 @@ double prusa_time_s(const std::string& gcode) {
     return s;
 }
 
-// PrusaSlicer's built-in defaults (an empty private --datadir) except what the test needs to see.
-PrusaSlice prusa_slice(const TempDir& d, const std::string& input, const std::string& tag) {
+// PrusaSlicer's built-in defaults (an empty private --datadir) except what the test needs to see,
+// and `options` (command-line options, e.g. "--perimeter-generator classic").
+PrusaSlice prusa_slice(const TempDir& d, const std::string& input, const std::string& tag, const std::string& options = "") {
     std::string gcode = d / (tag + ".gcode");
-    auto r = run("prusa-slicer --datadir " + quote(d / "prusa-datadir") + " --loglevel 1 --export-gcode -o " +
+    auto r = run("prusa-slicer --datadir " + quote(d / "prusa-datadir") + " --loglevel 1 " + options + " --export-gcode -o " +
                  quote(gcode) + " " + quote(input));
     PrusaSlice s;
     EXPECT_EQ(r.code, 0) << tag << ": " << r.out;
@@ -169,18 +170,31 @@ TEST(Slicers, PrusaSlicerPrintsTheSupportsVolumeLikeSupport) {
     // 200 x 200 mm bed). Placed 1.5 mm off, most cross-sections come out empty: the count is not
     // vacuous.
     if (!have("python3")) CS_SKIP_OR_FAIL_IN_CI("python3 is needed for bench/slicers/printed_bodies.py");
-    auto printed = [&](double bed_x) {
+    auto printed = [&](double bed_x, const std::string& tag) {
         auto r = run("python3 " + quote(source_dir() + "/bench/slicers/printed_bodies.py") + " " +
-                     quote(tee.dir / "ours.gcode") + " " + quote(tee.stem + ".supports.stl") + " " +
+                     quote(tee.dir / (tag + ".gcode")) + " " + quote(tee.stem + ".supports.stl") + " " +
                      quote(tee.stem + ".model.stl") + " " + std::to_string(bed_x) + " 200");
         EXPECT_EQ(r.code, 0) << r.out;
         return r.code == 0 ? nlohmann::json::parse(r.out) : nlohmann::json::object();
     };
-    auto placed = printed(200), shifted = printed(203);
+    auto placed = printed(200, "ours"), shifted = printed(203, "ours");
     ASSERT_TRUE(placed.contains("body_layers") && shifted.contains("body_layers"));
     EXPECT_GT(placed["body_layers"].get<int>(), 20);
     EXPECT_EQ(placed["dropped"].get<int>(), 0) << placed.dump();
     EXPECT_GT(shifted["dropped"].get<int>(), placed["body_layers"].get<int>() / 4) << shifted.dump();
+
+    // #32: the same under PrusaSlicer's classic perimeter generator, which many users pick, with
+    // thin walls detected (its default) and not (Prusa's own presets). Before the supports came
+    // as two volumes, each with its own thin_walls, classic left out the top layers of the tips
+    // (0.8 mm squares) with thin walls on, and the N-profile struts' walls with them off.
+    for (const char* thin_walls : {"--thin-walls", "--no-thin-walls"}) {
+        const std::string tag = std::string("classic") + thin_walls;
+        ASSERT_TRUE(prusa_slice(tee.dir, tee.stem + ".prusa.3mf", tag, std::string("--perimeter-generator classic ") + thin_walls).ok);
+        auto classic = printed(200, tag);
+        ASSERT_TRUE(classic.contains("body_layers")) << thin_walls;
+        EXPECT_EQ(classic["body_layers"], placed["body_layers"]) << thin_walls;
+        EXPECT_EQ(classic["dropped"].get<int>(), 0) << thin_walls << ": " << classic.dump();
+    }
 }
 
 // ---------------------------------------------------------------------------------------------

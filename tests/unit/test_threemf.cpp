@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mesh/mesh_io.hpp"
+#include "output/outputs.hpp"
 #include "output/threemf.hpp"
 #include "support.hpp"
 
@@ -152,7 +153,7 @@ TEST(ThreeMF, CuraGetsAGroupWhoseSupportsObjectIsMarkedPrintAsSupport) {
 TEST(ThreeMF, PrusaGetsOneObjectWithTwoVolumesInContiguousBlocks) {
     TwoParts p;
     auto files = unzip(encode_3mf_prusa("part", {{"part model", p.model, {}},
-                                                 {"part supports", p.supports, prusa_support_volume_settings(Params{})}}));
+                                                 {"part supports", p.supports, prusa_support_volume_settings(Params{}, PrusaSupportVolume::NProfile)}}));
     ASSERT_TRUE(files.count("3D/3dmodel.model") && files.count("Metadata/Slic3r_PE_model.config"));
     const std::string& xml = files["3D/3dmodel.model"];
     EXPECT_NE(xml.find("<metadata name=\"slic3rpe:Version3mf\">1</metadata>"), std::string::npos);
@@ -184,7 +185,7 @@ TEST(ThreeMF, PrusaGetsOneObjectWithTwoVolumesInContiguousBlocks) {
     }
     // Settings on the supports volume only.
     EXPECT_EQ(count(volumes[0], "type=\"volume\""), 2);  // name and volume_type
-    for (const auto& [key, value] : prusa_support_volume_settings(Params{}))
+    for (const auto& [key, value] : prusa_support_volume_settings(Params{}, PrusaSupportVolume::NProfile))
         EXPECT_EQ(count(volumes[1], "<metadata type=\"volume\" key=\"" + key + "\" value=\"" + value + "\"/>"), 1) << key;
     for (const char* key : {"perimeters\" value=\"1", "fill_density\" value=\"0%", "top_solid_layers\" value=\"0",
                             "bottom_solid_layers\" value=\"1", "perimeter_extrusion_width\" value=\"0.55",
@@ -192,12 +193,70 @@ TEST(ThreeMF, PrusaGetsOneObjectWithTwoVolumesInContiguousBlocks) {
         EXPECT_EQ(count(volumes[1], std::string("key=\"") + key + "\""), 1) << key;
 }
 
+// #32: PrusaSlicer's classic perimeter generator printed neither a tip's 0.8 mm square top with
+// thin walls on (its default), nor an N-profile's 0.5 mm walls with them off (Prusa's presets). The
+// .prusa.3mf carries the N-profile struts and the solid bodies as two volumes, each with the
+// thin_walls that prints it, whatever the user's preset says.
+TEST(ThreeMF, PrusaSupportsAreAnNProfileVolumeAndASolidVolumeEachWithItsThinWalls) {
+    const Params p;
+    Mesh model = box({-5, -5, 6}, {5, 5, 8});
+    const std::vector<Body> bodies = {{BodyKind::Strut, Profile::N, {0, 0, 0}, {0, 0, 4}, 2.0, 2.0},
+                                      {BodyKind::Tip, Profile::Square, {0, 0, 3.8}, {0, 0, 5.8}, 2.0, 0.8},
+                                      {BodyKind::Strut, Profile::Square, {3, 0, 0}, {3, 0, 5.8}, 1.0, 1.0}};
+    // A ceiling wall (a 0.5 mm fin) prints as a thin wall, in the N-profile's volume.
+    const CeilingWall wall{{-4, 3, 0}, {4, 3, 0}, 0, 5.8};
+    Mesh supports = bodies_mesh(bodies, p.wall_thickness);
+    append(supports, wall_mesh(wall));
+    Mesh n_profile = bodies_mesh(bodies, p.wall_thickness, Profile::N);
+    append(n_profile, wall_mesh(wall));
+    const Mesh solid = bodies_mesh(bodies, p.wall_thickness, Profile::Square);
+    ASSERT_EQ(n_profile.faces.size() + solid.faces.size(), supports.faces.size());
+    ASSERT_FALSE(n_profile.faces.empty() || solid.faces.empty());
+    Supports built;
+    built.bodies = bodies;
+    built.walls = {wall};
+    built.mesh = supports;
+    auto prusa_3mf = [&](const Supports* known) {
+        for (const OutputFile& f : support_mesh_files("part", model, supports, known, p))
+            if (f.name == "part.prusa.3mf") return unzip(f.content());
+        ADD_FAILURE() << "no part.prusa.3mf";
+        return std::map<std::string, std::string>{};
+    };
+    auto files = prusa_3mf(&built);
+    auto volumes = elements(files["Metadata/Slic3r_PE_model.config"], "volume");
+    ASSERT_EQ(volumes.size(), 3u);
+    auto triangles = [&](const std::string& v) { return std::stoi(attribute(v, "lastid")) - std::stoi(attribute(v, "firstid")) + 1; };
+    EXPECT_EQ(triangles(volumes[0]), static_cast<int>(model.faces.size()));
+    EXPECT_EQ(triangles(volumes[1]), static_cast<int>(n_profile.faces.size()));
+    EXPECT_EQ(triangles(volumes[2]), static_cast<int>(solid.faces.size()));
+    EXPECT_EQ(count(volumes[1], "key=\"name\" value=\"part supports\""), 1);
+    EXPECT_EQ(count(volumes[2], "key=\"name\" value=\"part supports, solid\""), 1);
+    EXPECT_EQ(count(volumes[0], "thin_walls"), 0);  // the user's model prints as the user set it
+    EXPECT_EQ(count(volumes[1], "key=\"thin_walls\" value=\"1\""), 1);
+    EXPECT_EQ(count(volumes[2], "key=\"thin_walls\" value=\"0\""), 1);
+    // Apart from thin_walls, both supports volumes print alike.
+    for (PrusaSupportVolume v : {PrusaSupportVolume::NProfile, PrusaSupportVolume::Solid})
+        for (const auto& [key, value] : prusa_support_volume_settings(p, v))
+            EXPECT_EQ(count(volumes[v == PrusaSupportVolume::NProfile ? 1 : 2],
+                            "<metadata type=\"volume\" key=\"" + key + "\" value=\"" + value + "\"/>"), 1) << key;
+    Settings n = prusa_support_volume_settings(p, PrusaSupportVolume::NProfile),
+             s = prusa_support_volume_settings(p, PrusaSupportVolume::Solid);
+    ASSERT_EQ(n.size(), s.size());
+    for (size_t i = 0; i < n.size(); ++i)
+        if (n[i].first != "thin_walls") EXPECT_EQ(n[i], s[i]);
+    // Without the bodies (apply's rendered union): one supports volume, as the N-profile prints.
+    volumes = elements(prusa_3mf(nullptr)["Metadata/Slic3r_PE_model.config"], "volume");
+    ASSERT_EQ(volumes.size(), 2u);
+    EXPECT_EQ(triangles(volumes[1]), static_cast<int>(supports.faces.size()));
+    EXPECT_EQ(count(volumes[1], "key=\"thin_walls\" value=\"1\""), 1);
+}
+
 // #11: the package is deflated by a maintained library; the same input gives the same bytes.
 TEST(ThreeMF, EntriesAreDeflatedAndTheSameInputGivesTheSameBytes) {
     Mesh model = box({0, 0, 0}, {10, 10, 10});
     for (int i = 1; i < 40; ++i) append(model, box({0, 0, 10.0 * i}, {10, 10, 10.0 * i + 10}));
     TwoParts p;
-    std::vector<NamedMesh> parts = {{"tower", model, {}}, {"tower supports", p.supports, prusa_support_volume_settings(Params{})}};
+    std::vector<NamedMesh> parts = {{"tower", model, {}}, {"tower supports", p.supports, prusa_support_volume_settings(Params{}, PrusaSupportVolume::NProfile)}};
     std::string z = encode_3mf_prusa("tower", parts);
     auto entries = unzip_entries(z);
     ASSERT_EQ(entries.size(), 4u);
@@ -298,7 +357,7 @@ TEST(ThreeMF, NamesAreEscapedAndEmptySupportsAreLeftOut) {
     EXPECT_NE(xml.find("a&amp;b &quot;c&quot;"), std::string::npos);
     EXPECT_EQ(elements(xml, "object").size(), 2u);  // the model and its group
     EXPECT_EQ(count(xml, "cura:support_mesh"), 0);
-    auto prusa = unzip(encode_3mf_prusa("x", {{"x", model, {}}, {"x supports", none, prusa_support_volume_settings(Params{})}}));
+    auto prusa = unzip(encode_3mf_prusa("x", {{"x", model, {}}, {"x supports", none, prusa_support_volume_settings(Params{}, PrusaSupportVolume::NProfile)}}));
     EXPECT_EQ(elements(prusa["Metadata/Slic3r_PE_model.config"], "volume").size(), 1u);
 }
 
