@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <optional>
 
 #include "core/rules.hpp"
@@ -444,9 +442,6 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
     const double overhang_nz = -std::sin(deg_to_rad(p.critical_angle));
     for (const Region& r : free_regions(q, samples, p)) {
         RegionWalls w = region_walls(q, r, samples, p, overhang_nz);
-        if (std::getenv("CS_DEBUG_CEILINGS") && w.walls.empty())
-            std::fprintf(stderr, "region %zu samples box (%.1f %.1f %.1f)-(%.1f %.1f %.1f): no walls\n", r.samples.size(),
-                         r.box.min.x, r.box.min.y, r.box.min.z, r.box.max.x, r.box.max.y, r.box.max.z);
         if (w.walls.empty() || enters_blocker(w.walls, blockers, p)) continue;
         // The region as a tree, against its walls plus a tree for what they leave (rims, ends).
         std::vector<CeilingWall> pieces;
@@ -465,11 +460,6 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         const double tree_cura = tree_s(kCuraRoute, t), tree_prusa = tree_s(kPrusaRoute, t);
         const double walls_cura = walls_route_seconds(kCuraRoute, w, p) + tree_s(kCuraRoute, rest);
         const double walls_prusa = walls_route_seconds(kPrusaRoute, w, p) + tree_s(kPrusaRoute, rest);
-        if (std::getenv("CS_DEBUG_CEILINGS"))
-            std::fprintf(stderr, "region %zu samples (%zu left) box (%.1f %.1f %.1f)-(%.1f %.1f %.1f) walls %zu len %.1f pieces %zu h %.1f: "
-                         "Cura walls %.0f s tree %.0f s, Prusa walls %.0f s tree %.0f s\n",
-                         r.samples.size(), left.size(), r.box.min.x, r.box.min.y, r.box.min.z, r.box.max.x, r.box.max.y, r.box.max.z,
-                         w.walls.size(), w.length, w.pieces, w.height, walls_cura, tree_cura, walls_prusa, tree_prusa);
         // Either slicer may print it: walls only where both print them faster.
         if (!(walls_cura < tree_cura && walls_prusa < tree_prusa)) continue;
         ++out.regions;
