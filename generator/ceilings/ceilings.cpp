@@ -55,7 +55,7 @@ std::optional<double> floor_under(const ModelQuery& q, const Vec3& x, const Para
 // How far above or below a sample its own stretch of surface may lie at `reach` from it: the
 // steepest overhang's rise over that reach, plus a layer.
 double same_surface_rise(const Params& p, double reach) {
-    return reach * std::tan(deg_to_rad(90 - p.critical_angle)) + p.layer_height;
+    return surface_rise(reach, p.critical_angle) + p.layer_height;
 }
 
 // A wall while it is laid out: stations along a line, the top (one gap under the ceiling) and the

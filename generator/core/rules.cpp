@@ -56,6 +56,14 @@ TipEnds contact_tip(const Params& p, const Vec3& tip_bottom, const Vec3& node, d
     return {tip_bottom, node, p.tip_diameter, strut_width};
 }
 
+std::optional<Vec3> contact_tip_bottom(const Vec3& contact, const Vec3& node, const Params& p) {
+    const Vec3 bottom = contact + Vec3{0, 0, p.gap};
+    if (node.z - bottom.z <= kShortestContactTip) return std::nullopt;
+    return bottom;
+}
+
+double surface_rise(double run, double critical_angle_deg) { return run * std::tan(deg_to_rad(90 - critical_angle_deg)); }
+
 double touching_space(const Params& p) { return 2 * p.gap + p.layer_height; }
 
 double tip_side_clearance(const Params& p) { return 0.5 * p.line_width; }

@@ -13,6 +13,8 @@
 // Inputs are the user's Params; every result is in millimetres.
 #pragma once
 
+#include <optional>
+
 #include "core/params.hpp"
 
 namespace cs {
@@ -96,8 +98,19 @@ TipEnds leaf_tip(const Params& p, const Vec3& node, const Vec3& tip_top, double 
 // of the strut ending there.
 TipEnds contact_tip(const Params& p, const Vec3& tip_bottom, const Vec3& node, double strut_width);
 
+// How far the steepest overhang rises over a horizontal run: points further apart in z than this
+// over `run` lie on different surfaces (the sampling's and the ceiling walls' "same stretch of
+// surface"). Example: surface_rise(1, 45) == 1.
+double surface_rise(double run, double critical_angle_deg);
+
 // The lowest a contact tip's bottom may come to the top of its node and still be built: a tip
 // shorter than this (a node already on the model's gap) is left out.
 constexpr double kShortestContactTip = 0.01;
+
+// Where the upside-down tip under a model-contact node at `node` ends: a gap above `contact`, the
+// point of the model it stands on; nothing when the node is too close to the model for a tip
+// (kShortestContactTip). The tree asks it before landing, the struts when building: one rule.
+// Example: contact_tip_bottom({0, 0, 5}, {0, 0, 7}, p) == Vec3{0, 0, 5 + p.gap}.
+std::optional<Vec3> contact_tip_bottom(const Vec3& contact, const Vec3& node, const Params& p);
 
 }  // namespace cs

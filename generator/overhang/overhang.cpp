@@ -11,9 +11,6 @@
 namespace cs {
 namespace {
 
-// How far the steepest overhang rises over a horizontal run: points further apart in z than this
-// over `run` lie on different surfaces.
-double surface_rise(double run, double critical_angle_deg) { return run * std::tan(deg_to_rad(90 - critical_angle_deg)); }
 
 // Edge function of p against the directed edge u->v. Computed from the lexicographically smaller
 // endpoint so both triangles sharing an edge get bit-identical values of opposite sign: the

@@ -38,14 +38,6 @@ Profile2D profile_of(Profile kind, double d, double wall) {
     return kind == Profile::N ? n_profile(d, wall) : square_profile(d);
 }
 
-// Where the upside-down tip under a model-contact node ends (a gap above the model), or nothing
-// when the node is too close to the model for a tip.
-std::optional<Vec3> contact_tip_bottom(const Node& contact, const Params& p) {
-    Vec3 bottom = contact.contact + Vec3{0, 0, p.gap};
-    if (contact.p.z - bottom.z <= kShortestContactTip) return std::nullopt;
-    return bottom;
-}
-
 }  // namespace
 
 Vec3 foot_top(const Vec3& bed_point, const Vec3& above, const Params& p) {
@@ -76,7 +68,7 @@ SizedTree size_struts(SupportTree tree, const Params& p) {
     }
     s.contact_tip.assign(n, std::nullopt);
     for (size_t v = 0; v < n; ++v)
-        if (nodes[v].kind == NodeKind::ModelContact) s.contact_tip[v] = contact_tip_bottom(nodes[v], p);
+        if (nodes[v].kind == NodeKind::ModelContact) s.contact_tip[v] = contact_tip_bottom(nodes[v].contact, nodes[v].p, p);
     s.overlap = joint_overlap(p);
     s.struts.resize(struts.size());
     for (size_t e = 0; e < struts.size(); ++e) {

@@ -62,9 +62,9 @@ bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec
 }
 
 bool contact_tip_is_clear(const ModelQuery& model, const Params& p, const Vec3& node, const Vec3& contact, double width) {
-    const Vec3 bottom = contact_under_tip(model, contact, node.z, p) + Vec3{0, 0, p.gap};
-    if (node.z - bottom.z <= kShortestContactTip) return true;
-    const TipEnds t = contact_tip(p, bottom, node, width);
+    const auto bottom = contact_tip_bottom(contact_under_tip(model, contact, node.z, p), node, p);
+    if (!bottom) return true;
+    const TipEnds t = contact_tip(p, *bottom, node, width);
     return prism_is_clear(model, t.bottom, t.bottom_width, t.top, t.top_width);
 }
 
