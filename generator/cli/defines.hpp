@@ -24,6 +24,10 @@ std::vector<std::string> scad_variable_names(const std::string& text);
 // be read (the render reports that).
 std::vector<std::string> unknown_define_warnings(const std::vector<std::string>& defines, const std::string& scad);
 
+// -D defines for a .scad: each checked (check_define), then a warning on stderr for each name the
+// file does not assign (unknown_define_warnings), unless `quiet`.
+void check_defines(const std::vector<std::string>& defines, const std::string& scad, bool quiet = false);
+
 struct Params;
 
 // Sets each parameter a define names by its .scad variable (`-D sampling=2`, `-D buildplate_only=true`),
