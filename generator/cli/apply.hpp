@@ -1,7 +1,10 @@
 // The two commands that render a generated .scad with OpenSCAD, with -D values on top:
 //   render  into <name>.union.stl (or -o): what OpenSCAD makes of it, for a look or another tool
 //   apply   the supports alone, into the four files a slicer opens (<name>.supports.stl,
-//           .supported.stl, .3mf, .prusa.3mf) beside it; the model and the report stay as written
+//           .supported.stl, .3mf, .prusa.3mf) beside it; the model and the report stay as written.
+//           The STLs and Cura's 3MF carry OpenSCAD's union; the .prusa.3mf, like a run's, the
+//           N-profile struts and walls and the solid bodies as two volumes, built from the tree,
+//           walls and values the .scad records (with the -D values on top), as `view` draws them
 //
 // Example (`clever-support apply out/m/m.scad -D k=0.003`):
 //   ApplyArgs a;

@@ -10,6 +10,7 @@
 #include "cli/suggest.hpp"
 #include "core/errors.hpp"
 #include "core/param_table.hpp"
+#include "edit/scad_values.hpp"
 
 namespace cs {
 namespace {
@@ -149,6 +150,22 @@ void set_scad_params(const std::vector<std::string>& defines, Params& p, bool ot
         set_param(*row, param_value_from_json(*row, v, "-D " + d), p);
     }
     validate_params(p, ParamNaming::scad);
+}
+
+std::string with_scad_defines(std::string text, const std::vector<std::string>& defines, const std::string& file) {
+    const ScadValues values = parse_scad_values(text, file);
+    for (const auto& d : defines) {
+        const auto [name, value] = name_and_value(d);
+        if (!values.count(name)) continue;
+        nlohmann::json v;
+        try {
+            v = nlohmann::json::parse(value);
+        } catch (const std::exception&) {
+            continue;  // an expression: OpenSCAD's alone
+        }
+        text = with_scad_value(text, name, v, file);
+    }
+    return text;
 }
 
 }  // namespace cs

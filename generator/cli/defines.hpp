@@ -35,4 +35,11 @@ struct Params;
 // parameter name, unless `others_allowed` (then it is left to OpenSCAD).
 void set_scad_params(const std::vector<std::string>& defines, Params& p, bool others_allowed);
 
+// The text of a generated .scad as OpenSCAD reads it with these (checked) defines: each one that
+// gives a plain value (a number, true/false, a string, a list) to a name the file assigns one
+// (edit/scad_values.hpp) replaces that value; the others are OpenSCAD's alone. `file` names the
+// file in errors (InputError when it does not parse).
+// Example: with_scad_defines("omit_struts = [];\n", {"omit_struts=[3]"}, "m.scad") -> "omit_struts = [3];\n"
+std::string with_scad_defines(std::string text, const std::vector<std::string>& defines, const std::string& file);
+
 }  // namespace cs
