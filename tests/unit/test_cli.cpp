@@ -16,12 +16,15 @@
 #include "pipeline/pipeline.hpp"
 #include "shapes.hpp"
 #include "support.hpp"
+#include "zip_read.hpp"
 
 namespace fs = std::filesystem;
 using namespace cs;
 using cs::test::quote;
 using CliRun = cs::test::Run;
 using cs::test::TempDir;
+using cs::test::elements;
+using cs::test::unzip;
 
 namespace {
 
@@ -620,6 +623,14 @@ TEST(FirstHour, RegrowTakesDefinesAndOut) {
     EXPECT_EQ(entries(tryout), six_outputs("tee"));
     EXPECT_TRUE(contains(read_file(tryout + "/tee.scad"), "\nsampling = 2;")) << "the define took effect";
     EXPECT_EQ(report_of(tryout, "tee")["parameters"]["sampling_distance_mm"], 2);
+    // Its .prusa.3mf is a run's: the model and the two supports volumes, each with its thin_walls.
+    const auto volumes = elements(unzip(read_file(tryout + "/tee.prusa.3mf"))["Metadata/Slic3r_PE_model.config"], "volume");
+    ASSERT_EQ(volumes.size(), 3u);
+    EXPECT_TRUE(contains(volumes[1], "key=\"name\" value=\"tee supports\"") && contains(volumes[1], "key=\"thin_walls\" value=\"1\""))
+        << volumes[1];
+    EXPECT_TRUE(contains(volumes[2], "key=\"name\" value=\"tee supports, solid\"") &&
+                contains(volumes[2], "key=\"thin_walls\" value=\"0\""))
+        << volumes[2];
     EXPECT_EQ(read_file(out + "/tee.scad"), original) << "the folder it came from is left alone";
     CliRun typo = cli("regrow " + quote(out + "/tee.scad") + " -D samplin=2");
     EXPECT_EQ(typo.code, kExitUsage) << typo.out;
