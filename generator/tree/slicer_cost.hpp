@@ -2,11 +2,19 @@
 // an island: the nozzle travels to it and draws its outline once. The counts (island-layers,
 // outline, travel) are priced for both routes the generator writes, CuraEngine from our support
 // mesh and PrusaSlicer from our .prusa.3mf, by core/slicer_time.hpp's tree_route_seconds: the one
-// price list, fitted to the slicers' G-code. The chooser (grow_cheaper_tree) ranks trees by
-// `seconds`, the mean of the two routes: we do not know which slicer a user prints with, so this
-// is the time expected for either, and a tree is kept only for minutes it saves on the two
-// together. The tree's sweep ranks its candidates by the first term (the layers a node stays an
-// island of its own).
+// price list, fitted to the slicers' G-code. `seconds`, the one number the summary gives, is the
+// mean of the two (we do not know which slicer a user prints with).
+//
+// The chooser (grow_cheaper_tree) ranks the ways of growing a tree by the PrusaSlicer price alone.
+// The ways differ by 0.2-2 % of the estimate, far below either route's error per model, so only
+// prices that hold their ranking count. PrusaSlicer's do: fitted again on the 11 tuning models
+// (bench/results/tuning.json at 4eb6aa6) they move by less than a third, and its per-island price,
+// the largest, is what trees with fewer islands save. Cura's do not: fitted again, its island
+// price falls 0.058 -> 0.020 s and its outline price rises 0.0036 -> 0.0285 s/mm (its three terms
+// grow together from tree to tree, so the fit cannot tell them apart). Ranked by the two routes'
+// sum, Cura's 0.058 s per mm of hop picked trees with less travel on 5 tuning models, and Cura's
+// G-code got 0-11 s slower on all 5 (README, "Which tree is kept"). The tree's sweep
+// ranks its candidates by the first term (the layers a node stays an island of its own).
 //
 // Example:
 //   const SizedTree sized = size_struts(tree, p);

@@ -583,7 +583,7 @@ TEST(GrowCheaperTree, KeepsTheWayTheSlicerEstimatePrefersUnlessItDropsMore) {
         const auto samples = sample_overhangs(m, overhang_options(p)).samples;
         auto seconds = [&](const SupportTree& t) {
             const SizedTree sized = size_struts(t, p);
-            return estimate_slicer_cost(sized.tree, mean_strut_widths(sized), p).seconds;
+            return estimate_slicer_cost(sized.tree, mean_strut_widths(sized), p).prusa_seconds;
         };
         const SupportTree plain = grow_tree(q, samples, p);
         // The expected pick, by the rule: the cheapest that drops no more than the plain growth.
