@@ -15,6 +15,7 @@
 #include "core/errors.hpp"
 #include "render/render.hpp"
 #include "support.hpp"
+#include "zip_read.hpp"
 #include "../unit/shapes.hpp"
 
 namespace cs::test {
@@ -528,6 +529,27 @@ TEST(ScadEdit, ApplyBringsATweakIntoTheSlicerFiles) {
     const double volume_before = signed_volume(read_mesh(out + "/tee.supports.stl"));
     std::map<std::string, std::string> before;
     for (const char* f : {"tee.supports.stl", "tee.supported.stl", "tee.3mf", "tee.prusa.3mf"}) before[f] = read_text(out + "/" + f);
+    // The .prusa.3mf holds the model and two supports volumes, as a run writes it (ThreeMF unit
+    // tests): the N-profile struts and the walls (thin walls on), and the solid bodies (off).
+    auto volumes_of = [](const std::string& package) {
+        return elements(unzip(package)["Metadata/Slic3r_PE_model.config"], "volume");
+    };
+    auto triangles = [](const std::string& v) { return std::stoi(attribute(v, "lastid")) - std::stoi(attribute(v, "firstid")) + 1; };
+    auto settings = [](const std::string& v) { return v.substr(v.find('>')); };  // its <metadata> lines
+    const auto grown = volumes_of(before["tee.prusa.3mf"]);
+    ASSERT_EQ(grown.size(), 3u);
+    // Applied unchanged: the same volumes, the same triangles in each, the same settings.
+    ASSERT_EQ(cs("apply -q " + quote(out + "/tee.scad")).code, 0);
+    const auto same = volumes_of(read_text(out + "/tee.prusa.3mf"));
+    ASSERT_EQ(same.size(), 3u);
+    for (size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(triangles(same[i]), triangles(grown[i])) << i;
+        EXPECT_EQ(settings(same[i]), settings(grown[i])) << i;
+    }
+    EXPECT_EQ(count(same[1], "key=\"name\" value=\"tee supports\""), 1);
+    EXPECT_EQ(count(same[1], "key=\"thin_walls\" value=\"1\""), 1);
+    EXPECT_EQ(count(same[2], "key=\"name\" value=\"tee supports, solid\""), 1);
+    EXPECT_EQ(count(same[2], "key=\"thin_walls\" value=\"0\""), 1);
     auto r = cs("apply " + quote(out + "/tee.scad") + " -D d_min=2");
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_NE(r.out.find("rewrote"), std::string::npos) << r.out;
@@ -538,6 +560,13 @@ TEST(ScadEdit, ApplyBringsATweakIntoTheSlicerFiles) {
     EXPECT_GT(signed_volume(supports), 1.5 * volume_before) << "2 mm struts instead of 1 mm";
     const Mesh supported = read_mesh(out + "/tee.supported.stl");
     EXPECT_EQ(supported.faces.size(), read_mesh(out + "/tee.model.stl").faces.size() + supports.faces.size());
+    // 2 mm struts are wide enough for the N-profile (three 0.5 mm walls): they leave the solid
+    // volume for the thin-walled one; the volumes' settings stay.
+    const auto tweaked = volumes_of(read_text(out + "/tee.prusa.3mf"));
+    ASSERT_EQ(tweaked.size(), 3u);
+    EXPECT_GT(triangles(tweaked[1]), triangles(grown[1]));
+    EXPECT_LT(triangles(tweaked[2]), triangles(grown[2]));
+    for (size_t i = 0; i < 3; ++i) EXPECT_EQ(settings(tweaked[i]), settings(grown[i])) << i;
     for (const auto& e : fs::directory_iterator(out)) EXPECT_EQ(e.path().filename().string().rfind(".", 0), std::string::npos)
         << "no temporary left: " << e.path();
     // `render` says the slicer files are unchanged and where to go.
