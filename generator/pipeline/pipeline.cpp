@@ -83,20 +83,24 @@ double scale_to_mm(Mesh& mesh, const Job& job, std::vector<std::string>& warning
 
 // choose_orientation with the support each candidate pose really needs. Candidate poses are
 // compared by trees grown from samples twice as sparse: a quarter of the work, and the ranking of
-// poses holds (the chosen pose's tree is then grown in full).
+// poses holds (the chosen pose's tree is then grown in full). The model is indexed once, as given:
+// each pose asks that index its questions, turned into the pose (the chosen pose gets its own
+// index afterwards, so what is written does not depend on the turning's rounding).
 Orientation orient_by_support(const Mesh& scaled, const Params& p, const std::string& orient) {
     Params coarse = p;
     coarse.sampling_distance = 2 * p.sampling_distance;
     OverhangOptions coarse_oo = overhang_options(coarse);
     coarse_oo.bridge_sampling = p.sampling_distance;  // holes judged at the run's spacing
+    std::unique_ptr<const ModelQuery> as_given;  // only when poses are judged by their trees
+    if (parse_orient(orient).mode == OrientMode::automatic) as_given = std::make_unique<const ModelQuery>(scaled);
     // A user's support blockers are in the chosen pose's coordinates: no pose is judged with them.
-    return choose_orientation(scaled, p, orient, [&](const Mesh& rotated) {
+    return choose_orientation(scaled, p, orient, [&](const Mesh& rotated, const Rotation& rotation) {
         Placement pl;
         Rotation id;
         Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
         auto samples = sample_overhangs(placed, coarse_oo);
         // What finish_supports computes of the volume, without the mesh a pose is not judged by.
-        const ModelQuery q(placed);
+        const ModelQuery q(placed, *as_given, rotation.m, pl.translation);
         const SizedTree sized = grow_cheaper_tree(q, samples.samples, coarse);
         const double volume = solid_volume(build_bodies(sized, coarse), coarse.wall_thickness);
         return PoseSupport{volume, sized.tree.stats.model_contacts, bounding_box(placed).size().z};
