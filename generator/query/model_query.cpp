@@ -8,6 +8,10 @@
 #include <CGAL/Surface_mesh.h>
 
 #include <boost/iterator/function_output_iterator.hpp>
+#include <array>
+#include <bit>
+#include <mutex>
+#include <unordered_map>
 #include <vector>
 
 namespace cs {
@@ -31,7 +35,66 @@ struct ModelQuery::Impl {
     Tree tree;
 };
 
-ModelQuery::ModelQuery(const Mesh& model) : model_(model) {
+namespace {
+
+// A question's exact bits (points and directions, as doubles): equal keys are the same question.
+template <std::size_t N>
+using Key = std::array<double, N>;
+
+struct KeyHash {
+    template <std::size_t N>
+    std::size_t operator()(const Key<N>& k) const {
+        std::uint64_t h = 0x9e3779b97f4a7c15ull;
+        for (double d : k) {  // splitmix64 over each coordinate's bits
+            std::uint64_t z = h ^ std::bit_cast<std::uint64_t>(d);
+            z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+            z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+            h = z ^ (z >> 31);
+        }
+        return static_cast<std::size_t>(h);
+    }
+};
+
+struct BitsEqual {
+    template <std::size_t N>
+    bool operator()(const Key<N>& a, const Key<N>& b) const {
+        for (std::size_t i = 0; i < N; ++i)
+            if (std::bit_cast<std::uint64_t>(a[i]) != std::bit_cast<std::uint64_t>(b[i])) return false;
+        return true;
+    }
+};
+
+template <std::size_t N, typename V>
+using Answers = std::unordered_map<Key<N>, V, KeyHash, BitsEqual>;
+
+Key<3> key(const Vec3& a) { return {a.x, a.y, a.z}; }
+Key<6> key(const Vec3& a, const Vec3& b) { return {a.x, a.y, a.z, b.x, b.y, b.z}; }
+
+// The answer to `k` from `answers`, else computed by `f` (outside the lock) and kept.
+template <std::size_t N, typename V, typename F>
+V remembered(std::mutex& m, Answers<N, V>& answers, const Key<N>& k, F f) {
+    {
+        std::lock_guard lock(m);
+        if (auto it = answers.find(k); it != answers.end()) return it->second;
+    }
+    V v = f();
+    std::lock_guard lock(m);
+    answers.emplace(k, v);
+    return v;
+}
+
+}  // namespace
+
+struct ModelQuery::Memo {
+    std::mutex mutex;
+    Answers<6, bool> segments;
+    Answers<6, std::optional<RayHit>> rays;
+    Answers<3, bool> inside;
+    Answers<3, double> distances;
+    Answers<3, Vec3> closest;
+};
+
+ModelQuery::ModelQuery(const Mesh& model) : model_(model), memo_(std::make_unique<Memo>()) {
     auto impl = std::make_shared<Impl>();
     impl->triangles.reserve(model.faces.size());
     for (const auto& f : model.faces)
@@ -43,7 +106,7 @@ ModelQuery::ModelQuery(const Mesh& model) : model_(model) {
 }
 
 ModelQuery::ModelQuery(const Mesh& moved, const ModelQuery& indexed, const double rotation[3][3], const Vec3& translation)
-    : model_(moved), impl_(indexed.impl_) {
+    : model_(moved), impl_(indexed.impl_), memo_(std::make_unique<Memo>()) {
     Frame f;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) f.r[i][j] = rotation[i][j];
@@ -77,6 +140,10 @@ Vec3 ModelQuery::Frame::dir_to_index(const Vec3& d) const {
 ModelQuery::~ModelQuery() = default;
 
 std::optional<RayHit> ModelQuery::first_hit(const Vec3& origin, const Vec3& dir) const {
+    return remembered(memo_->mutex, memo_->rays, key(origin, dir), [&] { return first_hit_uncached(origin, dir); });
+}
+
+std::optional<RayHit> ModelQuery::first_hit_uncached(const Vec3& origin, const Vec3& dir) const {
     if (!frame_) return first_hit_in_index(origin, dir);
     // The hit's point back in this model's frame; its face is the same face.
     auto hit = first_hit_in_index(frame_->to_index(origin), frame_->dir_to_index(dir));
@@ -105,7 +172,9 @@ std::optional<RayHit> ModelQuery::first_hit_in_index(const Vec3& origin, const V
 
 bool ModelQuery::segment_hits(const Vec3& a, const Vec3& b) const {
     if (a == b) return false;
-    return impl_->tree.do_intersect(K::Segment_3(pt(in_index(a)), pt(in_index(b))));
+    return remembered(memo_->mutex, memo_->segments, key(a, b), [&] {
+        return impl_->tree.do_intersect(K::Segment_3(pt(in_index(a)), pt(in_index(b))));
+    });
 }
 
 bool ModelQuery::triangle_hits(const Vec3& a, const Vec3& b, const Vec3& c) const {
@@ -113,11 +182,20 @@ bool ModelQuery::triangle_hits(const Vec3& a, const Vec3& b, const Vec3& c) cons
     return impl_->tree.do_intersect(Triangle3(pt(in_index(a)), pt(in_index(b)), pt(in_index(c))));
 }
 
-double ModelQuery::squared_distance(const Vec3& p) const { return impl_->tree.squared_distance(pt(in_index(p))); }
+double ModelQuery::squared_distance(const Vec3& p) const {
+    return remembered(memo_->mutex, memo_->distances, key(p), [&] { return impl_->tree.squared_distance(pt(in_index(p))); });
+}
 
-Vec3 ModelQuery::closest_point(const Vec3& p) const { return out_of_index(vec(impl_->tree.closest_point(pt(in_index(p))))); }
+Vec3 ModelQuery::closest_point(const Vec3& p) const {
+    return remembered(memo_->mutex, memo_->closest, key(p),
+                      [&] { return out_of_index(vec(impl_->tree.closest_point(pt(in_index(p))))); });
+}
 
 bool ModelQuery::inside(const Vec3& p) const {
+    return remembered(memo_->mutex, memo_->inside, key(p), [&] { return inside_uncached(p); });
+}
+
+bool ModelQuery::inside_uncached(const Vec3& p) const {
     // Irrational-looking directions avoid rays that graze edges of axis-aligned CAD meshes. None
     // points up: the usual question is about a point just below an overhang, whose face right
     // above would otherwise be crossed at a hair's distance, where rounding decides.
