@@ -74,5 +74,29 @@ TEST(ModelQuery, MovedTwiceComposes) {
     expect_same_answers(own, second);
 }
 
+// A query remembers its answers: asked again, or after other questions, it answers bit for bit as
+// a fresh query asked once does.
+TEST(ModelQuery, AnswersDoNotDependOnWhatWasAskedBefore) {
+    const Mesh m = test::bridge_shape();
+    const ModelQuery asked(m);
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> u(-14, 14);
+    std::vector<Vec3> points;
+    for (int i = 0; i < 200; ++i) points.push_back({u(rng), 0.5 * u(rng), 0.4 * u(rng) + 5});
+    auto same = [](const Vec3& a, const Vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; };
+    for (int round = 0; round < 2; ++round)
+        for (size_t i = 0; i + 1 < points.size(); ++i) {
+            const Vec3 &p = points[i], &q = points[i + 1];
+            const ModelQuery fresh(m);
+            EXPECT_EQ(asked.inside(p), fresh.inside(p));
+            EXPECT_EQ(asked.segment_hits(p, q), fresh.segment_hits(p, q));
+            EXPECT_EQ(asked.squared_distance(p), fresh.squared_distance(p));
+            EXPECT_TRUE(same(asked.closest_point(p), fresh.closest_point(p)));
+            const auto a = asked.first_hit(p, q - p), b = fresh.first_hit(p, q - p);
+            ASSERT_EQ(a.has_value(), b.has_value());
+            if (a) EXPECT_TRUE(same(a->point, b->point) && a->face == b->face && a->distance == b->distance);
+        }
+}
+
 }  // namespace
 }  // namespace cs
