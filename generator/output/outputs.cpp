@@ -175,7 +175,7 @@ std::string report_json(const Result& r, const Job& job) {
 }
 
 std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& model, const Mesh& supports,
-                                           const Supports* built, const Params& p) {
+                                           const Supports& built, const Params& p) {
     std::vector<OutputFile> files;
     files.push_back({name + ".supported.stl", [&model, &supports] {
                          Mesh supported = model;
@@ -187,17 +187,14 @@ std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& 
                          return encode_3mf_cura(name, {{name + " model", model, {}},
                                                        {name + " supports", supports, cura_support_mesh_settings()}});
                      }});
-    files.push_back({name + ".prusa.3mf", [name, &model, &supports, built, &p] {
-                         const Settings n_profile = prusa_support_volume_settings(p, PrusaSupportVolume::NProfile);
-                         if (!built)
-                             return encode_3mf_prusa(name, {{name + " model", model, {}}, {name + " supports", supports, n_profile}});
+    files.push_back({name + ".prusa.3mf", [name, &model, &built, &p] {
                          // The ceiling walls (0.5 mm fins) print as thin walls, like the N-profile's.
-                         Mesh struts = bodies_mesh(built->bodies, p.wall_thickness, Profile::N);
-                         for (const CeilingWall& w : built->walls) append(struts, wall_mesh(w));
-                         const Mesh solid = bodies_mesh(built->bodies, p.wall_thickness, Profile::Square);
+                         Mesh struts = bodies_mesh(built.bodies, p.wall_thickness, Profile::N);
+                         for (const CeilingWall& w : built.walls) append(struts, wall_mesh(w));
+                         const Mesh solid = bodies_mesh(built.bodies, p.wall_thickness, Profile::Square);
                          return encode_3mf_prusa(
                              name, {{name + " model", model, {}},
-                                    {name + " supports", struts, n_profile},
+                                    {name + " supports", struts, prusa_support_volume_settings(p, PrusaSupportVolume::NProfile)},
                                     {name + " supports, solid", solid,
                                      prusa_support_volume_settings(p, PrusaSupportVolume::Solid)}});
                      }});
@@ -205,7 +202,7 @@ std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& 
 }
 
 std::vector<OutputFile> output_files(const Result& r, const Job& job, const std::string& version) {
-    std::vector<OutputFile> files = support_mesh_files(r.name, r.model, r.supports.mesh, &r.supports, job.params);
+    std::vector<OutputFile> files = support_mesh_files(r.name, r.model, r.supports.mesh, r.supports, job.params);
     files.push_back({r.name + ".model.stl", [&r] { return encode_stl(r.model, "clever-support: placed model"); }});
     files.push_back({r.name + ".report.json", [&r, &job] { return report_json(r, job); }});
     files.push_back({r.name + ".scad", [&r, &job, version] {
