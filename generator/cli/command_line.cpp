@@ -123,7 +123,7 @@ void describe_app(CLI::App& app) {
                "  Cura:         <name>.3mf        supports marked \"print as support\"; import\n"
                "                                  clever_support.curaprofile once (on an Ender 3/5 or CR-10:\n"
                "                                  clever_support_creality.curaprofile; README, \"Printing in Cura\")\n"
-               "  PrusaSlicer:  <name>.prusa.3mf  supports as a part with support-like settings\n"
+               "  PrusaSlicer:  <name>.prusa.3mf  supports as two parts with support-like settings\n"
                "  Other:        <name>.supported.stl with the slicer's own supports off");
     app.set_version_flag("--version", CS_VERSION);
     app.require_subcommand(0, 1);

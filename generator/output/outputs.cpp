@@ -67,7 +67,9 @@ json supports_json(const Supports& s, const Params& p) {
                                  {"most_islands", cost.most_islands},
                                  {"outline_mm", cost.outline_mm},
                                  {"travel_mm", cost.travel_mm},
-                                 {"seconds", cost.seconds}}}};
+                                 {"seconds", cost.seconds},
+                                 {"routes", {{"cura_support_mesh", {{"seconds", cost.cura_seconds}}},
+                                             {"prusa_3mf", {{"seconds", cost.prusa_seconds}}}}}}}};
 }
 
 json edits_json(const ManualEdits& e, std::size_t blocked_samples) {
@@ -291,10 +293,11 @@ std::string human_summary(const Result& r, const Job& job, const std::string& di
     s += fmt::format("  tree        {} struts, {} merges, {} on the bed, {} on the model, {} pillars\n",
                      r.supports.sized.tree.struts.size(), st.merges, st.bed_contacts, st.model_contacts, st.pillars);
     const Params& p = job.params;
-    const double seconds = r.supports.slicer_cost.seconds;  // estimated once, by the pipeline
+    const SlicerCost& cost = r.supports.slicer_cost;  // estimated once, by the pipeline
     s += fmt::format("  support     {:.2f} g of filament ({:.0f} mm^3 at {:g} g/cm^3), about {:.1f} min of printing "
-                     "added (estimate)\n",
-                     support_grams(r.supports, p), r.supports.volume, p.filament_density, seconds / 60);
+                     "added (estimate: Cura {:.1f}, PrusaSlicer {:.1f})\n",
+                     support_grams(r.supports, p), r.supports.volume, p.filament_density, cost.seconds / 60,
+                     cost.cura_seconds / 60, cost.prusa_seconds / 60);
     s += fmt::format("              {:.0f} mm of struts\n", r.supports.length);
     double total = 0;
     for (const auto& x : r.stages) total += x.seconds;

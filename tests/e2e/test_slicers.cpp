@@ -88,7 +88,7 @@ struct Tee {
 bool have(const std::string& command) { return run("command -v " + command).code == 0; }
 
 // ---------------------------------------------------------------------------------------------
-// PrusaSlicer 2.5: <name>.prusa.3mf, one object whose supports volume has support-like settings.
+// PrusaSlicer 2.5: <name>.prusa.3mf, one object whose supports volumes have support-like settings.
 
 struct PrusaSlice {
     bool ok = false;

@@ -522,6 +522,14 @@ TEST(FirstHour, SummaryGivesGramsAndMinutesNotColumns) {
     EXPECT_NEAR(std::stod(m[1]), volume / 1000 * 1.24, 0.006) << r.out;
     EXPECT_NEAR(std::stod(m[3]), seconds / 60, 0.06) << r.out;
     EXPECT_GT(std::stod(m[3]), 0);
+    // Each route's estimate beside it (report: slicer_estimate.routes), their mean the one number.
+    std::smatch per;
+    ASSERT_TRUE(std::regex_search(r.out, per, std::regex(R"(estimate: Cura ([0-9.]+), PrusaSlicer ([0-9.]+)\))"))) << r.out;
+    const auto& routes = report["supports"]["slicer_estimate"]["routes"];
+    const double cura = routes["cura_support_mesh"]["seconds"], prusa = routes["prusa_3mf"]["seconds"];
+    EXPECT_NEAR(std::stod(per[1]), cura / 60, 0.06) << r.out;
+    EXPECT_NEAR(std::stod(per[2]), prusa / 60, 0.06) << r.out;
+    EXPECT_NEAR(seconds, 0.5 * (cura + prusa), 1e-6);
     EXPECT_FALSE(contains(r.out, "vs columns")) << r.out;  // moved to the report
     EXPECT_TRUE(report["saving_vs_columns"].contains("volume"));
     EXPECT_EQ(report["parameters"]["filament_density_g_cm3"], 1.24);
