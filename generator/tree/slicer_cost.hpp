@@ -6,8 +6,8 @@
 // mean of the two (we do not know which slicer a user prints with).
 //
 // The chooser (grow_cheaper_tree) ranks the ways of growing a tree by the PrusaSlicer price alone.
-// The ways differ by 0.2-2 % of the estimate, far below either route's error per model, so only
-// prices that hold their ranking count. PrusaSlicer's do: fitted again on the 11 tuning models
+// Where a price list changes the pick, the two ways' estimates differ by 0.02-2.5 %, below either
+// route's error on one model, so only prices that hold their ranking may choose. PrusaSlicer's do: fitted again on the 11 tuning models
 // (bench/results/tuning.json at 4eb6aa6) they move by less than a third, and its per-island price,
 // the largest, is what trees with fewer islands save. Cura's do not: fitted again, its island
 // price falls 0.058 -> 0.020 s and its outline price rises 0.0036 -> 0.0285 s/mm (its three terms
