@@ -275,9 +275,11 @@ std::optional<Vec3> beside_blockers(const ModelQuery& model, const Vec3& s, cons
 
 // What holds each sample's overhang up, at the height of that overhang: a live leaf's tip top, a
 // pillar's top, else the sample itself (it rests on material, is bridged, or was given up: where
-// no strut fits, more samples next to it would be given up too).
-std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samples) {
-    std::vector<Vec3> out, carried;
+// no strut fits, more samples next to it would be given up too). The samples in `lost` (leaves
+// the sweep lost: their strut found no way down) hold nothing up: a leaf beside one starts
+// elsewhere and may get down.
+std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samples, const std::vector<Vec3>& lost = {}) {
+    std::vector<Vec3> out, carried = lost;
     for (const auto& n : t.nodes)
         if (n.kind == NodeKind::Leaf) out.push_back({n.tip.x, n.tip.y, n.contact.z}), carried.push_back(n.contact);
     for (const auto& pl : t.pillars) out.push_back({pl.top.x, pl.top.y, pl.sample.z}), carried.push_back(pl.sample);
@@ -285,6 +287,16 @@ std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samp
     std::sort(carried.begin(), carried.end(), before);
     for (const auto& s : samples)
         if (!std::binary_search(carried.begin(), carried.end(), s.p, before)) out.push_back(s.p);
+    return out;
+}
+
+// The samples of the leaves hung in `hung` that the sweep lost in `grown` (grown from `hung`:
+// its first nodes are those leaves, in order).
+std::vector<Vec3> lost_samples(const SupportTree& hung, const SupportTree& grown) {
+    std::vector<Vec3> out;
+    for (size_t i = 0; i < hung.nodes.size() && i < grown.nodes.size(); ++i)
+        if (hung.nodes[i].kind == NodeKind::Leaf && grown.nodes[i].kind == NodeKind::Dropped)
+            out.push_back(hung.nodes[i].contact);
     return out;
 }
 
@@ -517,10 +529,26 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     }
     // Walls under ceilings low over the bed take the samples they carry; the tree grows from the rest.
     Ceilings ceilings = sw.time("ceilings", progress, [&] { return support_ceilings(*query, r.samples.samples, p, tree_counter(*query, p, blockers), blockers); });
-    const SupportTree hung_rest = ceilings.walls.empty() ? SupportTree{} : hang_leaves(*query, ceilings.rest, p, blockers);
+    SupportTree hung_rest = ceilings.walls.empty() ? SupportTree{} : hang_leaves(*query, ceilings.rest, p, blockers);
     // The tree and the columns baseline start from the same leaves (hanging them does not depend
     // on the strategy); the baseline carries every sample.
-    SizedTree grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, ceilings.walls.empty() ? hung : hung_rest, p, blockers); });
+    SupportTree& leaves = ceilings.walls.empty() ? hung : hung_rest;
+    SizedTree grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, leaves, p, blockers); });
+    // Leaves the sweep lost (no way down, even alone) leave their overhang beyond reach: samples
+    // beside them, and the tree grown once more with their leaves (bird and molecule at 120 mm).
+    if (grown.tree.stats.dropped > leaves.stats.dropped) {
+        const auto lost = lost_samples(leaves, grown.tree);
+        auto more = top_up_samples(r.model, oo, query.get(), r.samples, coverers(grown.tree, r.samples.samples, lost));
+        std::erase_if(more, [&](const Sample& s) { return in_support_blocker(s.p, blockers, p); });
+        if (!more.empty()) {
+            r.samples.topped_up += more.size();
+            r.samples.samples.insert(r.samples.samples.end(), more.begin(), more.end());
+            sort_top_down(r.samples.samples);
+            if (!ceilings.walls.empty()) hung = hang_more_leaves(*query, std::move(hung), more, p, blockers);
+            leaves = hang_more_leaves(*query, std::move(leaves), std::move(more), p, blockers);
+            grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, leaves, p, blockers); });
+        }
+    }
     // The user's omitted struts are numbered in the final tree (the one the .scad shows).
     r.supports = sw.time("struts", progress, [&] {
         return finish_supports(std::move(grown), p, job.edits.omit_struts, std::move(ceilings.walls));
