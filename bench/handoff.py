@@ -335,6 +335,23 @@ TARGETS = [  # (ratio key, limit, direction) — met when value <= limit ("max")
 ]
 
 
+def dumps_records(value, depth=0, record_depth=4):
+    """JSON with one record a line: objects open a level a line down to `record_depth` (the file, its
+    models, a model, a section of it such as its slices), and every value deeper is written compactly on
+    its record's line (a route's slice, a route's derived numbers), so a re-run's diff names the routes
+    that changed. json.load reads it as it read the indented files before; the content is the same."""
+    if not isinstance(value, dict) or not value or depth >= record_depth:
+        return json.dumps(value, separators=(",", ":"))
+    pad = " " * (depth + 1)
+    items = (f"{pad}{json.dumps(k)}: {dumps_records(v, depth + 1, record_depth)}" for k, v in value.items())
+    return "{\n" + ",\n".join(items) + "\n" + " " * depth + "}"
+
+
+def write_json(data, path):
+    with open(path, "w") as f:
+        f.write(dumps_records(data) + "\n")
+
+
 def fmt(v, spec="{:.2f}"):
     return "–" if v is None else spec.format(v)
 
@@ -721,7 +738,7 @@ def main():
                 m["derived"], m["targets"] = derive(m)
         summarize(data)
         if args.reparse:  # the G-codes' new numbers are kept, for a later --report-only
-            json.dump(data, open(jpath, "w"), indent=1)
+            write_json(data, jpath)
         open(mpath, "w").write(report_md(data))
         write_chart_svg(data, svg)
         return 0
@@ -772,7 +789,7 @@ def main():
         data["stamp"]["wall_total_s"] = time.time() - started
         summarize(data)
         os.makedirs(args.out, exist_ok=True)
-        json.dump(data, open(jpath, "w"), indent=1)
+        write_json(data, jpath)
         open(mpath, "w").write(report_md(data))
         write_chart_svg(data, svg)
     log(f"done, CPU {cpu_total:.0f} s, wall {time.time() - started:.0f} s")

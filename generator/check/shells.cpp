@@ -9,11 +9,20 @@
 #include "mesh/weld.hpp"
 
 namespace cs {
+namespace {
 
-bool is_closed_and_consistent(const Mesh& m) {
+// How often each directed edge (a -> b) is a side of a face, in its face's winding.
+std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed_edges(const Mesh& m) {
     std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
     for (const auto& f : m.faces)
         for (int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
+    return directed;
+}
+
+}  // namespace
+
+bool is_closed_and_consistent(const Mesh& m) {
+    const auto directed = directed_edges(m);
     for (const auto& [e, n] : directed) {
         if (n != 1) return false;
         auto it = directed.find({e.second, e.first});
@@ -23,9 +32,7 @@ bool is_closed_and_consistent(const Mesh& m) {
 }
 
 bool is_watertight(const Mesh& m) {
-    std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
-    for (const auto& f : m.faces)
-        for (int k = 0; k < 3; ++k) ++directed[{f[k], f[(k + 1) % 3]}];
+    const auto directed = directed_edges(m);
     for (const auto& [e, n] : directed) {
         auto it = directed.find({e.second, e.first});
         if (it == directed.end() || it->second != n) return false;

@@ -4,10 +4,13 @@
 #include <cctype>
 #include <fstream>
 #include <iterator>
+#include <utility>
 
+#include "cli/progress.hpp"
 #include "cli/suggest.hpp"
 #include "core/errors.hpp"
 #include "core/param_table.hpp"
+#include "edit/scad_values.hpp"
 
 namespace cs {
 namespace {
@@ -20,6 +23,12 @@ bool is_name(const std::string& s) {
 std::string trimmed(const std::string& s) {
     const auto a = s.find_first_not_of(" \t"), b = s.find_last_not_of(" \t");
     return a == std::string::npos ? "" : s.substr(a, b - a + 1);
+}
+
+// A checked define's name and value (check_define), each without the spaces around it.
+std::pair<std::string, std::string> name_and_value(const std::string& d) {
+    const auto eq = d.find('=');
+    return {trimmed(d.substr(0, eq)), trimmed(d.substr(eq + 1))};
 }
 
 // "" when every bracket and quote of an OpenSCAD value closes, else what is wrong.
@@ -112,13 +121,18 @@ std::vector<std::string> unknown_define_warnings(const std::vector<std::string>&
     return out;
 }
 
+void check_defines(const std::vector<std::string>& defines, const std::string& scad, bool quiet) {
+    for (const auto& d : defines) check_define(d);
+    if (!quiet)
+        for (const auto& w : unknown_define_warnings(defines, scad)) warn(w);
+}
+
 void set_scad_params(const std::vector<std::string>& defines, Params& p, bool others_allowed) {
     std::vector<std::string> names;
     for (const auto& row : param_table()) names.push_back(row.scad.name);
     for (const auto& d : defines) {
         check_define(d);
-        const auto eq = d.find('=');
-        const std::string name = trimmed(d.substr(0, eq)), value = trimmed(d.substr(eq + 1));
+        const auto [name, value] = name_and_value(d);
         const ParamRow* row = nullptr;
         for (const auto& r : param_table())
             if (name == r.scad.name) row = &r;
@@ -136,6 +150,22 @@ void set_scad_params(const std::vector<std::string>& defines, Params& p, bool ot
         set_param(*row, param_value_from_json(*row, v, "-D " + d), p);
     }
     validate_params(p, ParamNaming::scad);
+}
+
+std::string with_scad_defines(std::string text, const std::vector<std::string>& defines, const std::string& file) {
+    const ScadValues values = parse_scad_values(text, file);
+    for (const auto& d : defines) {
+        const auto [name, value] = name_and_value(d);
+        if (!values.count(name)) continue;
+        nlohmann::json v;
+        try {
+            v = nlohmann::json::parse(value);
+        } catch (const std::exception&) {
+            continue;  // an expression: OpenSCAD's alone
+        }
+        text = with_scad_value(text, name, v, file);
+    }
+    return text;
 }
 
 }  // namespace cs

@@ -24,11 +24,22 @@ std::vector<std::string> scad_variable_names(const std::string& text);
 // be read (the render reports that).
 std::vector<std::string> unknown_define_warnings(const std::vector<std::string>& defines, const std::string& scad);
 
+// -D defines for a .scad: each checked (check_define), then a warning on stderr for each name the
+// file does not assign (unknown_define_warnings), unless `quiet`.
+void check_defines(const std::vector<std::string>& defines, const std::string& scad, bool quiet = false);
+
 struct Params;
 
 // Sets each parameter a define names by its .scad variable (`-D sampling=2`, `-D buildplate_only=true`),
 // validated as in an edited .scad. A name that is no parameter: ParameterError with the nearest
 // parameter name, unless `others_allowed` (then it is left to OpenSCAD).
 void set_scad_params(const std::vector<std::string>& defines, Params& p, bool others_allowed);
+
+// The text of a generated .scad as OpenSCAD reads it with these (checked) defines: each one that
+// gives a plain value (a number, true/false, a string, a list) to a name the file assigns one
+// (edit/scad_values.hpp) replaces that value; the others are OpenSCAD's alone. `file` names the
+// file in errors (InputError when it does not parse).
+// Example: with_scad_defines("omit_struts = [];\n", {"omit_struts=[3]"}, "m.scad") -> "omit_struts = [3];\n"
+std::string with_scad_defines(std::string text, const std::vector<std::string>& defines, const std::string& file);
 
 }  // namespace cs

@@ -1,6 +1,6 @@
 // Every failure a user can be told about, as one small hierarchy of exceptions, and the process
 // exit codes they map to (documented in README "Exit codes"). The library throws these and
-// returns only results; the command line (cli/main.cpp, `exit_code_for`) is the one place that
+// returns only results; the command line (cli/exit_code.cpp, `exit_code_for`) is the one place that
 // turns them into a message on stderr and an exit code.
 #pragma once
 

@@ -140,7 +140,7 @@ void apply_config(const nlohmann::json& config, Params& p, const std::string& wh
     for (const auto& [key, value] : config.items()) {
         if (key == "preset" || key == "description" || key == "support-blocker" || key == "block" ||
             key == "support-point")
-            continue;  // the user's edits (cli/main.cpp edits_from); "block" is their old name
+            continue;  // the user's edits (cli/param_flags.cpp edits_from); "block" is their old name
         const ParamRow* row = find_param(key);
         if (!row || key.rfind("--", 0) == 0)
             throw ParameterError(where + ": \"" + key + "\" is not a parameter (use the flag names, e.g. \"critical-angle\")");

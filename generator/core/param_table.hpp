@@ -1,6 +1,6 @@
 // One home for every parameter: the table below has one row per parameter of `Params`, and every
 // layer that names parameters is generated from it:
-//   cli/main.cpp        the command-line flags (`--critical-angle 55`) and the --config file keys
+//   cli/param_flags     the command-line flags (`--critical-angle 55`) and the --config file keys
 //                       (the flag without its dashes: {"critical-angle": 55}), via set_param
 //   validate_params     the valid ranges, with messages naming the flag (or the .scad variable)
 //   output/outputs.cpp  the report's "parameters" object (report_key)

@@ -67,7 +67,9 @@ json supports_json(const Supports& s, const Params& p) {
                                  {"most_islands", cost.most_islands},
                                  {"outline_mm", cost.outline_mm},
                                  {"travel_mm", cost.travel_mm},
-                                 {"seconds", cost.seconds}}}};
+                                 {"seconds", cost.seconds},
+                                 {"routes", {{"cura_support_mesh", {{"seconds", cost.cura_seconds}}},
+                                             {"prusa_3mf", {{"seconds", cost.prusa_seconds}}}}}}}};
 }
 
 json edits_json(const ManualEdits& e, std::size_t blocked_samples) {
@@ -175,7 +177,7 @@ std::string report_json(const Result& r, const Job& job) {
 }
 
 std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& model, const Mesh& supports,
-                                           const Supports* built, const Params& p) {
+                                           const Supports& built, const Params& p) {
     std::vector<OutputFile> files;
     files.push_back({name + ".supported.stl", [&model, &supports] {
                          Mesh supported = model;
@@ -187,17 +189,14 @@ std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& 
                          return encode_3mf_cura(name, {{name + " model", model, {}},
                                                        {name + " supports", supports, cura_support_mesh_settings()}});
                      }});
-    files.push_back({name + ".prusa.3mf", [name, &model, &supports, built, &p] {
-                         const Settings n_profile = prusa_support_volume_settings(p, PrusaSupportVolume::NProfile);
-                         if (!built)
-                             return encode_3mf_prusa(name, {{name + " model", model, {}}, {name + " supports", supports, n_profile}});
+    files.push_back({name + ".prusa.3mf", [name, &model, &built, &p] {
                          // The ceiling walls (0.5 mm fins) print as thin walls, like the N-profile's.
-                         Mesh struts = bodies_mesh(built->bodies, p.wall_thickness, Profile::N);
-                         for (const CeilingWall& w : built->walls) append(struts, wall_mesh(w));
-                         const Mesh solid = bodies_mesh(built->bodies, p.wall_thickness, Profile::Square);
+                         Mesh struts = bodies_mesh(built.bodies, p.wall_thickness, Profile::N);
+                         for (const CeilingWall& w : built.walls) append(struts, wall_mesh(w));
+                         const Mesh solid = bodies_mesh(built.bodies, p.wall_thickness, Profile::Square);
                          return encode_3mf_prusa(
                              name, {{name + " model", model, {}},
-                                    {name + " supports", struts, n_profile},
+                                    {name + " supports", struts, prusa_support_volume_settings(p, PrusaSupportVolume::NProfile)},
                                     {name + " supports, solid", solid,
                                      prusa_support_volume_settings(p, PrusaSupportVolume::Solid)}});
                      }});
@@ -205,7 +204,7 @@ std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& 
 }
 
 std::vector<OutputFile> output_files(const Result& r, const Job& job, const std::string& version) {
-    std::vector<OutputFile> files = support_mesh_files(r.name, r.model, r.supports.mesh, &r.supports, job.params);
+    std::vector<OutputFile> files = support_mesh_files(r.name, r.model, r.supports.mesh, r.supports, job.params);
     files.push_back({r.name + ".model.stl", [&r] { return encode_stl(r.model, "clever-support: placed model"); }});
     files.push_back({r.name + ".report.json", [&r, &job] { return report_json(r, job); }});
     files.push_back({r.name + ".scad", [&r, &job, version] {
@@ -294,10 +293,11 @@ std::string human_summary(const Result& r, const Job& job, const std::string& di
     s += fmt::format("  tree        {} struts, {} merges, {} on the bed, {} on the model, {} pillars\n",
                      r.supports.sized.tree.struts.size(), st.merges, st.bed_contacts, st.model_contacts, st.pillars);
     const Params& p = job.params;
-    const double seconds = r.supports.slicer_cost.seconds;  // estimated once, by the pipeline
+    const SlicerCost& cost = r.supports.slicer_cost;  // estimated once, by the pipeline
     s += fmt::format("  support     {:.2f} g of filament ({:.0f} mm^3 at {:g} g/cm^3), about {:.1f} min of printing "
-                     "added (estimate)\n",
-                     support_grams(r.supports, p), r.supports.volume, p.filament_density, seconds / 60);
+                     "added (estimate: Cura {:.1f}, PrusaSlicer {:.1f})\n",
+                     support_grams(r.supports, p), r.supports.volume, p.filament_density, cost.seconds / 60,
+                     cost.cura_seconds / 60, cost.prusa_seconds / 60);
     s += fmt::format("              {:.0f} mm of struts\n", r.supports.length);
     double total = 0;
     for (const auto& x : r.stages) total += x.seconds;

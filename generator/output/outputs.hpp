@@ -3,7 +3,7 @@
 //   <name>.supports.stl   the support solids alone
 //   <name>.model.stl      the placed (scaled, rotated, on-bed) model
 //   <name>.3mf            for Cura: model + supports grouped, the supports marked "print as support"
-//   <name>.prusa.3mf      for PrusaSlicer: one object, the supports a volume with support-like settings
+//   <name>.prusa.3mf      for PrusaSlicer: one object, the supports two volumes with support-like settings
 //   clever_support.curaprofile  Cura's support settings for the supports of <name>.3mf, to import once;
 //   clever_support_creality.curaprofile  the same for Creality's qualities (output/threemf.hpp)
 //   <name>.report.json    parameters, counts, lengths, volumes, the columns baseline, timings
@@ -35,15 +35,15 @@ std::string report_json(const Result& r, const Job& job);
 std::vector<OutputFile> output_files(const Result& r, const Job& job, const std::string& version);
 
 // The four files that carry the supports: <name>.supported.stl, .supports.stl, .3mf (Cura) and
-// .prusa.3mf (`p` gives the PrusaSlicer volumes' settings). `built` is what `supports` was made of
-// (its bodies, then its ceiling walls): the .prusa.3mf carries what prints as thin walls (N-profile
-// struts, ceiling walls) and the solid bodies (tips, feet, pillars, square struts) as two volumes
-// (see prusa_support_volume_settings). Null when not known (`clever-support apply` has only the
-// .scad's rendered union): then `supports` is one volume with the N-profile's settings.
-// output_files writes them after a run, apply from a rendered .scad. The meshes, `built` and `p`
-// must outlive the files.
+// .prusa.3mf (`p` gives the PrusaSlicer volumes' settings). `supports` is the support solid the
+// STLs and Cura's 3MF carry; `built` is what it is made of (its bodies, then its ceiling walls):
+// the .prusa.3mf carries what prints as thin walls (N-profile struts, ceiling walls) and the solid
+// bodies (tips, feet, pillars, square struts) as two volumes (see prusa_support_volume_settings).
+// output_files writes them after a run (`supports` is built's mesh), `clever-support apply` from
+// a rendered .scad (`supports` is OpenSCAD's union, `built` the bodies the .scad records:
+// view/view_tree.hpp supports_from_scad). The meshes, `built` and `p` must outlive the files.
 std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& model, const Mesh& supports,
-                                           const Supports* built, const Params& p);
+                                           const Supports& built, const Params& p);
 
 // Creates `dir` if needed and writes all files atomically as a set. Throws OutputError.
 void write_outputs(const std::string& dir, const std::vector<OutputFile>& files);

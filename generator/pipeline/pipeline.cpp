@@ -127,9 +127,11 @@ SizedTree grow_cheaper_tree(const ModelQuery& q, const SupportTree& hung, const 
     // leaves the tree as it is), so finish_supports need not size it again.
     SizedTree best = size_struts(std::move(plain), p);
     if (p.strategy != Strategy::tree) return best;
+    // Ranked by PrusaSlicer's price (tree/slicer_cost.hpp says why): the ways differ by a few percent,
+    // and only that route's fitted prices tell such trees apart.
     auto price = [&](SizedTree& t) {
         t.tree.slicer_cost = estimate_slicer_cost(t.tree, mean_strut_widths(t), p);
-        return t.tree.slicer_cost->seconds;
+        return t.tree.slicer_cost->prusa_seconds;
     };
     double best_seconds = price(best);
     for (const GrowOptions& way : {GrowOptions{.lean_merging_leaves = true}, GrowOptions{.pair_leaves_first = true}}) {

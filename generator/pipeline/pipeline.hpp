@@ -33,7 +33,8 @@ Supports build_supports(const Mesh& placed, const std::vector<Sample>& samples, 
 Supports build_supports(const ModelQuery& placed, const std::vector<Sample>& samples, const Params& p,
                         const std::vector<int>& omit = {});
 // The tree grown each way of GrowOptions (tree.hpp: plainly, leaning merging leaves, pairing
-// leaves first), keeping the one estimate_slicer_cost finds cheapest for a slicer, but never one
+// leaves first), keeping the one estimate_slicer_cost finds cheapest for PrusaSlicer (its
+// prusa_seconds: tree/slicer_cost.hpp says why that route's price), but never one
 // that gives up more samples than the plain growth (on a tie, the earlier way). Each way is a
 // greedy choice that helps some models and costs others; the estimate picked PrusaSlicer's faster
 // tree on 9 of 9 models between the first two ways. The columns baseline is grown once (no merges).

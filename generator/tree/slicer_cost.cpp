@@ -1,5 +1,5 @@
-// The slicer cost model of tree/slicer_cost.hpp: what a slicer spends printing a tree as a
-// support mesh, layer by layer. Prices in tree/tuning.hpp.
+// The slicer cost model of tree/slicer_cost.hpp: what a slicer spends printing a tree, layer by
+// layer. The prices are the slicers' own, fitted to their G-code (core/slicer_time.hpp).
 #include "tree/slicer_cost.hpp"
 
 #include <algorithm>
@@ -7,8 +7,8 @@
 #include <limits>
 #include <numeric>
 
+#include "core/slicer_time.hpp"
 #include "core/xy_grid.hpp"
-#include "tree/tuning.hpp"
 
 namespace cs {
 namespace {
@@ -158,8 +158,9 @@ SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>&
         c.most_islands = std::max(c.most_islands, islands.size());
         c.travel_mm += nearest_next_path(islands);
     }
-    const TreeTuning& k = kTreeTuning;
-    c.seconds = c.island_layers * k.island_seconds + c.outline_mm / k.outline_mm_per_second + c.travel_mm / k.travel_mm_per_second;
+    c.cura_seconds = tree_route_seconds(kCuraRoute, c.island_layers, c.outline_mm, c.travel_mm);
+    c.prusa_seconds = tree_route_seconds(kPrusaRoute, c.island_layers, c.outline_mm, c.travel_mm);
+    c.seconds = 0.5 * (c.cura_seconds + c.prusa_seconds);
     return c;
 }
 

@@ -80,13 +80,15 @@ struct GrowOptions {
     bool pair_leaves_first = false;
 };
 
-// What a slicer spends printing a tree as a support mesh (estimate_slicer_cost,
-// tree/slicer_cost.hpp).
+// What a slicer spends printing a tree (estimate_slicer_cost, tree/slicer_cost.hpp): what it
+// counts, and those counts priced for each route by core/slicer_time.hpp.
 struct SlicerCost {
     double island_layers = 0;  // islands, summed over the layers
     double outline_mm = 0;     // outline drawn, summed over the layers
     double travel_mm = 0;      // travel between the islands of each layer, nearest island next
-    double seconds = 0;        // all three, priced by kTreeTuning (tree/tuning.hpp)
+    double cura_seconds = 0;   // all three priced for CuraEngine from our support mesh (kCuraRoute)
+    double prusa_seconds = 0;  // and for PrusaSlicer from our .prusa.3mf (kPrusaRoute)
+    double seconds = 0;        // the mean of the two routes: a user prints with one or the other
     std::size_t most_islands = 0;  // islands in the busiest layer
 };
 

@@ -64,19 +64,6 @@ struct TreeTuning {
     // (the supports mesh would not be a set of closed solids where they did).
     double feet_apart = 0.05;
 
-    // ---- prices of the slicer cost model (estimate_slicer_cost, tree/tree.hpp), for CuraEngine 4.13 with the
-    // bench profile (0.2 mm layers, acceleration 1500 mm/s^2, support as a support mesh with one
-    // wall and no infill); checked against its G-code in bench/results/tree_shape.md.
-    // Each island costs a stop and a start: accelerating to and from a hop of a few mm at
-    // 1500 mm/s^2 takes about 2 * sqrt(d / a) = 0.1 s for d = 4 mm, the outline's seam adds its
-    // own stop, and some hops retract. What the G-code of four models leaves after outline and
-    // travel: 0.20-0.26 s.
-    double island_seconds = 0.2;
-    // Outlines of 1 to 4 mm struts are drawn in segments of a few mm: at 1500 mm/s^2 they average
-    // well below the 60 mm/s support speed.
-    double outline_mm_per_second = 30;
-    // Travel between islands at 150 mm/s, slowed the same way by acceleration over hops of a few mm.
-    double travel_mm_per_second = 100;
 };
 
 inline constexpr TreeTuning kTreeTuning{};

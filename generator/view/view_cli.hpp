@@ -1,4 +1,5 @@
-// The `view` subcommand's hook into the command line (cli/main.cpp): its arguments and its run.
+// The `view` subcommand's hook into the command line (cli/command_line.cpp adds it, cli/main.cpp
+// runs it): its arguments and its run.
 #pragma once
 
 #include <string>

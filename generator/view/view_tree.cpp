@@ -1,5 +1,8 @@
 #include "view/view_tree.hpp"
 
+#include "pipeline/pipeline.hpp"
+#include "struts/struts.hpp"
+
 namespace cs {
 namespace {
 
@@ -56,6 +59,35 @@ ScadTree tree_from_scad(const ScadValues& values) {
         t.pillars.push_back(pillar);
     }
     return out;
+}
+
+std::vector<CeilingWall> walls_from_scad(const ScadValues& values) {
+    std::vector<CeilingWall> walls;
+    for (const auto& w : list_of(values, "cs_walls")) {
+        CeilingWall wall;
+        wall.from = {w[0][0].get<double>(), w[0][1].get<double>(), 0};
+        wall.to = {w[1][0].get<double>(), w[1][1].get<double>(), 0};
+        wall.bottom = w[2].get<double>();
+        wall.top = w[3].get<double>();
+        wall.thickness = w[4].get<double>();
+        walls.push_back(wall);
+    }
+    return walls;
+}
+
+Supports supports_from_scad(const ScadValues& values, const std::vector<int>& omit, const Params& p) {
+    Supports s;
+    s.sized = size_struts(prune_struts(tree_from_scad(values).tree, omit), p);
+    // Where the file says, not where the rules would put them again from its numbers: a contact
+    // node's `contact` is already its tip's bottom, and the overlap is the one cs_tree draws with.
+    const auto& nodes = s.sized.tree.nodes;
+    for (size_t v = 0; v < nodes.size(); ++v)
+        if (nodes[v].kind == NodeKind::ModelContact) s.sized.contact_tip[v] = nodes[v].contact;
+    if (auto it = values.find("cs_overlap"); it != values.end() && it->second.value.is_number())
+        s.sized.overlap = it->second.value.get<double>();
+    s.bodies = build_bodies(s.sized, p);
+    s.walls = walls_from_scad(values);
+    return s;
 }
 
 }  // namespace cs

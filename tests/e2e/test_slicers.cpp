@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <regex>
 
@@ -87,7 +88,7 @@ struct Tee {
 bool have(const std::string& command) { return run("command -v " + command).code == 0; }
 
 // ---------------------------------------------------------------------------------------------
-// PrusaSlicer 2.5: <name>.prusa.3mf, one object whose supports volume has support-like settings.
+// PrusaSlicer 2.5: <name>.prusa.3mf, one object whose supports volumes have support-like settings.
 
 struct PrusaSlice {
     bool ok = false;
@@ -124,6 +125,16 @@ PrusaSlice prusa_slice(const TempDir& d, const std::string& input, const std::st
     s.extrusion = extrusion_by_type(gcode, 16 * 60);
     s.seconds = prusa_time_s(gcode);
     return s;
+}
+
+// bench/slicers/printed_bodies.py on a G-code: the layers of every shell of `bodies` (an STL of
+// separate closed solids) and how many of those cross-sections have no extrusion inside them, with
+// the object centred at (bed_x, 200) / 2 as PrusaSlicer centres it on its default bed.
+nlohmann::json printed_bodies(const std::string& gcode, const std::string& bodies, const std::string& model, double bed_x) {
+    auto r = run("python3 " + quote(source_dir() + "/bench/slicers/printed_bodies.py") + " " + quote(gcode) + " " +
+                 quote(bodies) + " " + quote(model) + " " + std::to_string(bed_x) + " 200");
+    EXPECT_EQ(r.code, 0) << r.out;
+    return r.code == 0 ? nlohmann::json::parse(r.out) : nlohmann::json::object();
 }
 
 TEST(Slicers, PrusaSlicerPrintsTheSupportsVolumeLikeSupport) {
@@ -171,11 +182,7 @@ TEST(Slicers, PrusaSlicerPrintsTheSupportsVolumeLikeSupport) {
     // vacuous.
     if (!have("python3")) CS_SKIP_OR_FAIL_IN_CI("python3 is needed for bench/slicers/printed_bodies.py");
     auto printed = [&](double bed_x, const std::string& tag) {
-        auto r = run("python3 " + quote(source_dir() + "/bench/slicers/printed_bodies.py") + " " +
-                     quote(tee.dir / (tag + ".gcode")) + " " + quote(tee.stem + ".supports.stl") + " " +
-                     quote(tee.stem + ".model.stl") + " " + std::to_string(bed_x) + " 200");
-        EXPECT_EQ(r.code, 0) << r.out;
-        return r.code == 0 ? nlohmann::json::parse(r.out) : nlohmann::json::object();
+        return printed_bodies(tee.dir / (tag + ".gcode"), tee.stem + ".supports.stl", tee.stem + ".model.stl", bed_x);
     };
     auto placed = printed(200, "ours"), shifted = printed(203, "ours");
     ASSERT_TRUE(placed.contains("body_layers") && shifted.contains("body_layers"));
@@ -193,6 +200,31 @@ TEST(Slicers, PrusaSlicerPrintsTheSupportsVolumeLikeSupport) {
         auto classic = printed(200, tag);
         ASSERT_TRUE(classic.contains("body_layers")) << thin_walls;
         EXPECT_EQ(classic["body_layers"], placed["body_layers"]) << thin_walls;
+        EXPECT_EQ(classic["dropped"].get<int>(), 0) << thin_walls << ": " << classic.dump();
+    }
+}
+
+// #32 for `clever-support apply`: the supports of an edited .scad reach PrusaSlicer as a run's do,
+// as two volumes each with its thin_walls, so the classic perimeter generator prints every body
+// layer of them too. (apply wrote one volume with thin walls on before: classic left out the top
+// layers of the tips.)
+TEST(Slicers, PrusaSlicerPrintsTheSupportsAnApplyWroteUnderClassicToo) {
+    if (!have("prusa-slicer")) CS_SKIP_OR_FAIL_IN_CI("prusa-slicer is not installed (scripts/install-deps.sh installs it)");
+    if (!have_openscad()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD (scripts/install-deps.sh installs it)");
+    if (!have("python3")) CS_SKIP_OR_FAIL_IN_CI("python3 is needed for bench/slicers/printed_bodies.py");
+    Tee tee;
+    // The run's bodies, one shell each, for printed_bodies.py: apply keeps the tree, and a .scad
+    // applied without -D renders the same bodies (to the file's 4 decimals).
+    const std::string bodies = tee.dir / "bodies.stl";
+    std::filesystem::copy_file(tee.stem + ".supports.stl", bodies);
+    auto applied = run(quote(cli()) + " apply -q " + quote(tee.stem + ".scad"));
+    ASSERT_EQ(applied.code, 0) << applied.out;
+    for (const char* thin_walls : {"--thin-walls", "--no-thin-walls"}) {
+        const std::string tag = std::string("applied-classic") + thin_walls;
+        ASSERT_TRUE(prusa_slice(tee.dir, tee.stem + ".prusa.3mf", tag, std::string("--perimeter-generator classic ") + thin_walls).ok);
+        auto classic = printed_bodies(tee.dir / (tag + ".gcode"), bodies, tee.stem + ".model.stl", 200);
+        ASSERT_TRUE(classic.contains("body_layers")) << thin_walls;
+        EXPECT_GT(classic["body_layers"].get<int>(), 20) << thin_walls;
         EXPECT_EQ(classic["dropped"].get<int>(), 0) << thin_walls << ": " << classic.dump();
     }
 }

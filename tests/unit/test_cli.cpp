@@ -16,12 +16,16 @@
 #include "pipeline/pipeline.hpp"
 #include "shapes.hpp"
 #include "support.hpp"
+#include "zip_read.hpp"
 
 namespace fs = std::filesystem;
 using namespace cs;
 using cs::test::quote;
 using CliRun = cs::test::Run;
 using cs::test::TempDir;
+using cs::test::elements;
+using cs::test::unzip;
+using cs::test::read_text;
 
 namespace {
 
@@ -29,10 +33,6 @@ CliRun cli(const std::string& args) { return cs::test::run(quote(cs::test::cli()
 
 std::string bad_dir() { return cs::test::source_dir() + "/tests/data/bad"; }
 
-std::string read_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // Every entry of a directory, hidden ones included; empty when it does not exist.
 std::set<std::string> entries(const std::string& dir) {
@@ -113,7 +113,7 @@ void expect_outcome(const std::string& input, int code, const std::string& phras
     CliRun r = cli(quote(input) + " --out " + quote(out));
     EXPECT_EQ(r.code, code) << r.out;
     std::string where = r.out;
-    if (code == 0) where += read_file(out + "/" + stem_of(input) + ".report.json");
+    if (code == 0) where += read_text(out + "/" + stem_of(input) + ".report.json");
     EXPECT_TRUE(contains(where, phrase)) << "missing '" << phrase << "' in:\n" << r.out;
     if (code != 0) {
         EXPECT_TRUE(contains(r.out, "clever-support: error: ")) << r.out;
@@ -197,9 +197,9 @@ TEST(Cli, GoodMeshWritesExactlyTheSixOutputs) {
     EXPECT_FALSE(supports.faces.empty());
     EXPECT_EQ(supported.faces.size(), model.faces.size() + supports.faces.size());
     EXPECT_NEAR(bounding_box(model).min.z, 0, 1e-6);
-    std::string report = read_file(out + "/tee.report.json");
+    std::string report = read_text(out + "/tee.report.json");
     EXPECT_TRUE(contains(report, "\"tool\": \"clever-support\"")) << report.substr(0, 300);
-    EXPECT_TRUE(contains(read_file(out + "/tee.scad"), "clever_support.scad"));
+    EXPECT_TRUE(contains(read_text(out + "/tee.scad"), "clever_support.scad"));
 }
 
 TEST(Cli, GeneratedSupportsPassTheCheckCommand) {
@@ -226,7 +226,7 @@ TEST(Cli, TwoRunsWriteByteIdenticalMeshesAndScad) {
         EXPECT_GT(fs::file_size(a + "/" + stem + ".supports.stl"), 84u) << "no supports: a weak test";
         for (const auto& f : six_outputs(stem)) {
             if (f == stem + ".report.json") continue;  // see TwoRunsWriteByteIdenticalReports
-            std::string x = read_file(a + "/" + f), y = read_file(b + "/" + f);
+            std::string x = read_text(a + "/" + f), y = read_text(b + "/" + f);
             EXPECT_FALSE(x.empty()) << f;
             EXPECT_TRUE(x == y) << f << " differs between two runs";
         }
@@ -251,7 +251,7 @@ TEST(Cli, TwoRunsWriteIdenticalReportsApartFromTimings) {
         }
         return out;
     };
-    std::string a = read_file(tmp / "a/tee.report.json"), b = read_file(tmp / "b/tee.report.json");
+    std::string a = read_text(tmp / "a/tee.report.json"), b = read_text(tmp / "b/tee.report.json");
     ASSERT_FALSE(a.empty());
     EXPECT_TRUE(strip(a) == strip(b)) << first_difference(strip(a), strip(b));
 }
@@ -264,7 +264,7 @@ TEST(Cli, TwoRunsWriteByteIdenticalReports) {
     std::string input = write_good_mesh(tmp);
     ASSERT_EQ(cli(quote(input) + " --orient keep --no-timings --out " + quote(tmp / "a")).code, 0);
     ASSERT_EQ(cli(quote(input) + " --orient keep --no-timings --out " + quote(tmp / "b")).code, 0);
-    std::string a = read_file(tmp / "a/tee.report.json"), b = read_file(tmp / "b/tee.report.json");
+    std::string a = read_text(tmp / "a/tee.report.json"), b = read_text(tmp / "b/tee.report.json");
     ASSERT_FALSE(a.empty());
     EXPECT_TRUE(a == b) << "tee.report.json differs between two identical runs, first at " << first_difference(a, b);
 }
@@ -389,7 +389,7 @@ TEST(Cli, OutputPathThatIsAFileFailsWithExitSix) {
     CliRun r = cli(quote(input) + " --out " + quote(tmp / "afile"));
     EXPECT_EQ(r.code, kExitOutputFailed) << r.out;
     EXPECT_TRUE(contains(r.out, "not a directory")) << r.out;
-    EXPECT_EQ(read_file(tmp / "afile"), "x");
+    EXPECT_EQ(read_text(tmp / "afile"), "x");
 }
 
 // ---------------------------------------------------------------- usage
@@ -498,7 +498,7 @@ std::string write_tunnel(const TempDir& dir, double width = 2) {
 }
 
 nlohmann::json report_of(const std::string& out, const std::string& stem) {
-    return nlohmann::json::parse(read_file(out + "/" + stem + ".report.json"));
+    return nlohmann::json::parse(read_text(out + "/" + stem + ".report.json"));
 }
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
@@ -522,6 +522,14 @@ TEST(FirstHour, SummaryGivesGramsAndMinutesNotColumns) {
     EXPECT_NEAR(std::stod(m[1]), volume / 1000 * 1.24, 0.006) << r.out;
     EXPECT_NEAR(std::stod(m[3]), seconds / 60, 0.06) << r.out;
     EXPECT_GT(std::stod(m[3]), 0);
+    // Each route's estimate beside it (report: slicer_estimate.routes), their mean the one number.
+    std::smatch per;
+    ASSERT_TRUE(std::regex_search(r.out, per, std::regex(R"(estimate: Cura ([0-9.]+), PrusaSlicer ([0-9.]+)\))"))) << r.out;
+    const auto& routes = report["supports"]["slicer_estimate"]["routes"];
+    const double cura = routes["cura_support_mesh"]["seconds"], prusa = routes["prusa_3mf"]["seconds"];
+    EXPECT_NEAR(std::stod(per[1]), cura / 60, 0.06) << r.out;
+    EXPECT_NEAR(std::stod(per[2]), prusa / 60, 0.06) << r.out;
+    EXPECT_NEAR(seconds, 0.5 * (cura + prusa), 1e-6);
     EXPECT_FALSE(contains(r.out, "vs columns")) << r.out;  // moved to the report
     EXPECT_TRUE(report["saving_vs_columns"].contains("volume"));
     EXPECT_EQ(report["parameters"]["filament_density_g_cm3"], 1.24);
@@ -587,7 +595,7 @@ TEST(FirstHour, ASlotThePrinterBridgesGetsNoSupport) {
     EXPECT_GT(supported["overhangs"]["samples"].get<int>(), 0);
     EXPECT_GT(supported["supports"]["bodies"].get<int>(), 0);
     EXPECT_EQ(supported["parameters"]["support_bridges"], true);
-    EXPECT_TRUE(contains(read_file(old + "/tunnel.scad"), "support_bridges = true;"));
+    EXPECT_TRUE(contains(read_text(old + "/tunnel.scad"), "support_bridges = true;"));
 }
 
 TEST(FirstHour, PillarsCanBeLeftOutByIndex) {
@@ -598,7 +606,7 @@ TEST(FirstHour, PillarsCanBeLeftOutByIndex) {
     ASSERT_EQ(before["supports"]["struts"], 0);  // a part with pillars only
     const int pillars = before["supports"]["pillars"];
     ASSERT_GT(pillars, 0);
-    const std::string scad = out + "/tunnel.scad", text = read_file(scad);
+    const std::string scad = out + "/tunnel.scad", text = read_text(scad);
     EXPECT_TRUE(contains(text, "/* 0 */ [[")) << "pillars are numbered after the (no) struts";
     std::ofstream(scad) << replaced(text, "omit_struts = [];", "omit_struts = [0];");
     CliRun r = cli("regrow " + quote(scad));
@@ -614,13 +622,21 @@ TEST(FirstHour, RegrowTakesDefinesAndOut) {
     TempDir tmp;
     std::string out = tmp / "out", tryout = tmp / "try";
     ASSERT_EQ(cli(quote(write_good_mesh(tmp)) + " --orient keep --out " + quote(out)).code, 0);
-    const std::string original = read_file(out + "/tee.scad");
+    const std::string original = read_text(out + "/tee.scad");
     CliRun r = cli("regrow " + quote(out + "/tee.scad") + " -D sampling=2 --out " + quote(tryout));
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_EQ(entries(tryout), six_outputs("tee"));
-    EXPECT_TRUE(contains(read_file(tryout + "/tee.scad"), "\nsampling = 2;")) << "the define took effect";
+    EXPECT_TRUE(contains(read_text(tryout + "/tee.scad"), "\nsampling = 2;")) << "the define took effect";
     EXPECT_EQ(report_of(tryout, "tee")["parameters"]["sampling_distance_mm"], 2);
-    EXPECT_EQ(read_file(out + "/tee.scad"), original) << "the folder it came from is left alone";
+    // Its .prusa.3mf is a run's: the model and the two supports volumes, each with its thin_walls.
+    const auto volumes = elements(unzip(read_text(tryout + "/tee.prusa.3mf"))["Metadata/Slic3r_PE_model.config"], "volume");
+    ASSERT_EQ(volumes.size(), 3u);
+    EXPECT_TRUE(contains(volumes[1], "key=\"name\" value=\"tee supports\"") && contains(volumes[1], "key=\"thin_walls\" value=\"1\""))
+        << volumes[1];
+    EXPECT_TRUE(contains(volumes[2], "key=\"name\" value=\"tee supports, solid\"") &&
+                contains(volumes[2], "key=\"thin_walls\" value=\"0\""))
+        << volumes[2];
+    EXPECT_EQ(read_text(out + "/tee.scad"), original) << "the folder it came from is left alone";
     CliRun typo = cli("regrow " + quote(out + "/tee.scad") + " -D samplin=2");
     EXPECT_EQ(typo.code, kExitUsage) << typo.out;
     EXPECT_TRUE(contains(typo.out, "did you mean `sampling`")) << typo.out;
@@ -687,7 +703,7 @@ TEST(FirstHour, ThePoseInWords) {
     EXPECT_TRUE(contains(r.out, "pose        scaled 1, rotated 90.0 deg about X, then 0.0 about Y, then 30.0 about Z, then moved by ("))
         << r.out;
     EXPECT_TRUE(contains(r.out, "design -> placed: placed = translate([")) << r.out;
-    EXPECT_TRUE(contains(read_file(out + "/tee.scad"), "// pose: scaled 1, rotated 90.0 deg about X"));
+    EXPECT_TRUE(contains(read_text(out + "/tee.scad"), "// pose: scaled 1, rotated 90.0 deg about X"));
     // The report's angles and offset map the design onto the placed model.
     auto pl = report_of(out, "tee")["placement"];
     EXPECT_TRUE(pl.contains("how_to_map"));

@@ -1,10 +1,16 @@
-// Reading an edited .scad back (edit/scad_values), pruning omitted struts and a user's samples
-// (pipeline), and the box tests the blockers use (core/geometry).
+// Reading an edited .scad back (edit/scad_values), the bodies it renders (view/view_tree, what
+// `apply` writes for PrusaSlicer), pruning omitted struts and a user's samples (pipeline), and the
+// box tests the blockers use (core/geometry).
 #include <gtest/gtest.h>
 
 #include "core/errors.hpp"
 #include "edit/scad_values.hpp"
+#include "mesh/mesh_io.hpp"
+#include "output/scad.hpp"
 #include "pipeline/pipeline.hpp"
+#include "shapes.hpp"
+#include "support.hpp"
+#include "view/view_tree.hpp"
 
 using namespace cs;
 
@@ -103,6 +109,57 @@ TEST(PruneStruts, AStrutGoesWithEverythingAboveItNodesKeepTheirIndices) {
     EXPECT_EQ(prune_struts(small_tree(), {}).struts.size(), 5u);
     EXPECT_THROW(prune_struts(small_tree(), {5}), ParameterError);
     EXPECT_THROW(prune_struts(small_tree(), {-1}), ParameterError);
+}
+
+// `apply` splits the .prusa.3mf's supports by the bodies the .scad records, since OpenSCAD's
+// union cannot tell a tip from a strut: rebuilt from the file, they are the bodies the run built
+// (as near as the file writes its numbers), omitted branches left out as the run left them out,
+// contact tips ending where the file says, and the file's walls.
+TEST(SupportsFromScad, AreTheBodiesAndWallsTheRunBuilt) {
+    cs::test::TempDir tmp;
+    std::map<BodyKind, int> kinds;
+    std::map<Profile, int> profiles;
+    // Struts to the bed and onto the box below; a table's struts stand on feet.
+    for (const Mesh& shape : {cs::test::cantilever_over_box(), cs::test::table_shape()})
+        for (const std::vector<int>& omit : {std::vector<int>{}, std::vector<int>{0, 3}}) {
+            const std::string input = tmp / "part.stl";
+            write_stl(input, shape);
+            Job job;
+            job.input = input;
+            job.orient = "keep";
+            job.edits.omit_struts = omit;
+            Result r = run_job(job);
+            Supports run = r.supports;
+            run.walls.push_back({{-30, -20, 0}, {-10, -20, 0}, 0, 4.25, false, 0.6});
+            const ScadMeta meta{"test", r.input_sha256, input, "part.model.stl", pose_numbers(r.placement), ""};
+            const std::string text = emit_scad(run, job, meta);
+            const Supports back = supports_from_scad(parse_scad_values(text, "part.scad"), omit, job.params);
+            ASSERT_EQ(back.bodies.size(), run.bodies.size()) << omit.size();
+            for (size_t i = 0; i < run.bodies.size(); ++i) {
+                const Body &a = run.bodies[i], &b = back.bodies[i];
+                ++kinds[a.kind], ++profiles[a.profile];
+                EXPECT_EQ(b.kind, a.kind) << i;
+                EXPECT_EQ(b.profile, a.profile) << i;
+                EXPECT_LT(distance(b.bottom, a.bottom), 1e-3) << i;
+                EXPECT_LT(distance(b.top, a.top), 1e-3) << i;
+                EXPECT_NEAR(b.bottom_width, a.bottom_width, 1e-3) << i;
+                EXPECT_NEAR(b.top_width, a.top_width, 1e-3) << i;
+            }
+            ASSERT_EQ(back.walls.size(), run.walls.size());
+            for (size_t i = 0; i < run.walls.size(); ++i) {
+                const CeilingWall &a = run.walls[i], &b = back.walls[i];
+                EXPECT_LT(horizontal_distance(b.from, a.from), 1e-3) << i;
+                EXPECT_LT(horizontal_distance(b.to, a.to), 1e-3) << i;
+                EXPECT_NEAR(b.bottom, a.bottom, 1e-3) << i;
+                EXPECT_NEAR(b.top, a.top, 1e-3) << i;
+                EXPECT_NEAR(b.thickness, a.thickness, 1e-3) << i;
+            }
+        }
+    // Not vacuous: the runs had every kind of body the rebuild places, and both profiles.
+    for (BodyKind k : {BodyKind::Strut, BodyKind::Tip, BodyKind::ContactTip, BodyKind::Foot})
+        EXPECT_GT(kinds[k], 0) << static_cast<int>(k);
+    EXPECT_GT(profiles[Profile::N], 0);
+    EXPECT_GT(profiles[Profile::Square], 0);
 }
 
 TEST(Boxes, SegmentsAndSweptSquaresMeetBoxes) {

@@ -50,10 +50,6 @@ nlohmann::json report_of(const TempDir& d, const std::string& args) {
     return r.code == 0 ? nlohmann::json::parse(in) : nlohmann::json::object();
 }
 
-std::string read_text(const std::string& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // Every row's report key holds the changed value, and its .scad variable is assigned it.
 void expect_changed_everywhere(const TempDir& d, const nlohmann::json& report) {

@@ -16,6 +16,7 @@
 #include "support.hpp"
 #include "tree/clearance.hpp"
 #include "tree/slicer_cost.hpp"
+#include "core/slicer_time.hpp"
 #include "tree/tree.hpp"
 
 using namespace cs;
@@ -582,7 +583,7 @@ TEST(GrowCheaperTree, KeepsTheWayTheSlicerEstimatePrefersUnlessItDropsMore) {
         const auto samples = sample_overhangs(m, overhang_options(p)).samples;
         auto seconds = [&](const SupportTree& t) {
             const SizedTree sized = size_struts(t, p);
-            return estimate_slicer_cost(sized.tree, mean_strut_widths(sized), p).seconds;
+            return estimate_slicer_cost(sized.tree, mean_strut_widths(sized), p).prusa_seconds;
         };
         const SupportTree plain = grow_tree(q, samples, p);
         // The expected pick, by the rule: the cheapest that drops no more than the plain growth.
@@ -671,6 +672,10 @@ TEST(SlicerCost, CountsIslandsOutlineAndTravelPerLayer) {
     EXPECT_EQ(c.most_islands, 2u);
     EXPECT_NEAR(c.outline_mm, 100 * 4.0, 1e-9);  // a 1 mm square
     EXPECT_NEAR(c.travel_mm, 50 * 10.0, 1e-9);
+    // Priced by the one price list (core/slicer_time.hpp) for both routes; ranked by their mean.
+    EXPECT_DOUBLE_EQ(c.cura_seconds, tree_route_seconds(kCuraRoute, 100, 400, 500));
+    EXPECT_DOUBLE_EQ(c.prusa_seconds, tree_route_seconds(kPrusaRoute, 100, 400, 500));
+    EXPECT_DOUBLE_EQ(c.seconds, 0.5 * (c.cura_seconds + c.prusa_seconds));
     EXPECT_GT(c.seconds, 0);
     // Joined half-way into one trunk: fewer islands, less travel, less time.
     SupportTree j;

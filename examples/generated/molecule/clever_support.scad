@@ -250,6 +250,25 @@ module cs_tree(tree, omit, highlight, k, d_min, d_max, strength_length, wall, ti
     }
 }
 
+// A wall under a low ceiling (generator/ceilings): a box w[4] thick across the line from w[0] to
+// w[1], from z = w[2] up to z = w[3]; one polyhedron with explicit triangles.
+module cs_wall(w) {
+    t = w[4];
+    along = w[1] - w[0];
+    o = [-along[1], along[0]] * (t / 2 / norm(along));
+    polyhedron(
+        points = [for (c = [w[0], w[1]]) each [[c[0] - o[0], c[1] - o[1], w[2]], [c[0] + o[0], c[1] + o[1], w[2]],
+                                                [c[0] + o[0], c[1] + o[1], w[3]], [c[0] - o[0], c[1] - o[1], w[3]]]],
+        faces = concat([[0, 1, 2], [0, 2, 3], [4, 6, 5], [4, 7, 6]],
+                       [for (i = [0 : 3]) let(b = (i + 1) % 4) [i, b + 4, b]],
+                       [for (i = [0 : 3]) let(b = (i + 1) % 4) [i, i + 4, b + 4]]),
+        convexity = 2);
+}
+
+module cs_walls(walls) {
+    color("darkorange") for (w = walls) cs_wall(w);
+}
+
 // A user's support blockers (see-through blue) and support points (red) in the preview only:
 // never part of a rendered solid.
 module cs_show_edits(blockers, points) {
