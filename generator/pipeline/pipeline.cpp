@@ -541,12 +541,18 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         auto more = top_up_samples(r.model, oo, query.get(), r.samples, coverers(grown.tree, r.samples.samples, lost));
         std::erase_if(more, [&](const Sample& s) { return in_support_blocker(s.p, blockers, p); });
         if (!more.empty()) {
-            r.samples.topped_up += more.size();
-            r.samples.samples.insert(r.samples.samples.end(), more.begin(), more.end());
-            sort_top_down(r.samples.samples);
-            if (!ceilings.walls.empty()) hung = hang_more_leaves(*query, std::move(hung), more, p, blockers);
-            leaves = hang_more_leaves(*query, std::move(leaves), std::move(more), p, blockers);
-            grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, leaves, p, blockers); });
+            SupportTree more_leaves = hang_more_leaves(*query, leaves, more, p, blockers);
+            SizedTree regrown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, more_leaves, p, blockers); });
+            // Kept only where it loses no more leaves: with many dead ends (menger_sponge3 with
+            // --buildplate-only) the new leaves crowd the way down and more are lost.
+            if (regrown.tree.stats.dropped <= grown.tree.stats.dropped) {
+                r.samples.topped_up += more.size();
+                r.samples.samples.insert(r.samples.samples.end(), more.begin(), more.end());
+                sort_top_down(r.samples.samples);
+                if (!ceilings.walls.empty()) hung = hang_more_leaves(*query, std::move(hung), std::move(more), p, blockers);
+                leaves = std::move(more_leaves);
+                grown = std::move(regrown);
+            }
         }
     }
     // The user's omitted struts are numbered in the final tree (the one the .scad shows).
