@@ -88,7 +88,7 @@ std::vector<std::tuple<double, int, int>> nearest_pairs(int count, At at, double
 
 }  // namespace
 
-void lean_tips_in_pairs(SweepBooks& b, const std::vector<int>& leaves) {
+void lean_tips_in_pairs(SweepBooks& b, const std::vector<int>& leaves, bool quads) {
     auto& nodes = b.t_.nodes;
     const double reach = 2 * b.max_tip_slant(b.p_.tip_length) + b.leaned_feet_apart();  // leaned_pair's farthest
     const int n = static_cast<int>(leaves.size());
@@ -104,6 +104,7 @@ void lean_tips_in_pairs(SweepBooks& b, const std::vector<int>& leaves) {
         taken[i] = taken[j] = 1;
         leaned.emplace_back(v, u);
     }
+    if (!quads) return;
     // Pairs of pairs whose middles are as near as two leaves of a pair may be.
     auto middle = [&](int k) { return (nodes[leaned[k].first].p + nodes[leaned[k].second].p) * 0.5; };
     std::vector<char> joined(leaned.size(), 0);

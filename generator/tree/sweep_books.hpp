@@ -96,10 +96,10 @@ private:
 };
 
 // GrowOptions::pair_leaves_first: neighbouring leaves at one height, nearest pairs first, lean
-// their tips towards each other before the sweep starts (leaned_pair); then neighbouring pairs,
-// nearest first, lean all four tips towards their middle (leaned_quad), so four leaves meet about
-// a layer below their feet instead of two pairs a strut's drop further down. tree/lean_tips.cpp.
-void lean_tips_in_pairs(SweepBooks& b, const std::vector<int>& leaves);
+// their tips towards each other before the sweep starts (leaned_pair); with `quads`
+// (GrowOptions::lean_quads) neighbouring pairs, nearest first, then lean all four tips towards their
+// middle (leaned_quad). tree/lean_tips.cpp.
+void lean_tips_in_pairs(SweepBooks& b, const std::vector<int>& leaves, bool quads);
 
 // After the sweep: where two leaves merge, they lean their tips towards each other and the merge
 // rises to meet them; a merge below a raised one rises too, to where the cones of its parents now

@@ -600,8 +600,8 @@ TEST(GrowTree, FourLeavesPairedFirstLeanToTheirMiddleAndMeetSooner) {
             if (n.kind == NodeKind::Merge) z = std::min(z, n.p.z);
         return z;
     };
-    const auto four = grow_block(GrowOptions{.pair_leaves_first = true});
-    const auto pairs = grow_block(GrowOptions{});
+    const auto four = grow_block(GrowOptions{.pair_leaves_first = true, .lean_quads = true});
+    const auto pairs = grow_block(GrowOptions{.pair_leaves_first = true});
     const double tan_c = std::tan(p.critical_angle * kDeg);
     const Vec3 middle{1.25, 1.25, 0};
     std::vector<Vec3> feet;
@@ -633,7 +633,8 @@ TEST(GrowCheaperTree, KeepsTheWayTheSlicerEstimatePrefersUnlessItDropsMore) {
         const SupportTree plain = grow_tree(q, samples, p);
         // The expected pick, by the rule: the cheapest that drops no more than the plain growth.
         SupportTree expected = plain;
-        for (const GrowOptions way : {GrowOptions{.lean_merging_leaves = true}, GrowOptions{.pair_leaves_first = true}}) {
+        for (const GrowOptions way : {GrowOptions{.lean_merging_leaves = true}, GrowOptions{.pair_leaves_first = true},
+                                      GrowOptions{.pair_leaves_first = true, .lean_quads = true}}) {
             SupportTree t = grow_tree(q, samples, p, way);
             if (t.stats.dropped <= plain.stats.dropped && t.stats.dropped_branches <= plain.stats.dropped_branches &&
                 seconds(t) < seconds(expected))
@@ -642,6 +643,7 @@ TEST(GrowCheaperTree, KeepsTheWayTheSlicerEstimatePrefersUnlessItDropsMore) {
         const SupportTree kept = grow_cheaper_tree(q, samples, p).tree;
         EXPECT_EQ(kept.grown_with.lean_merging_leaves, expected.grown_with.lean_merging_leaves);
         EXPECT_EQ(kept.grown_with.pair_leaves_first, expected.grown_with.pair_leaves_first);
+        EXPECT_EQ(kept.grown_with.lean_quads, expected.grown_with.lean_quads);
         EXPECT_LE(kept.stats.dropped, plain.stats.dropped);
         EXPECT_LE(seconds(kept), seconds(plain));
         ASSERT_EQ(kept.nodes.size(), expected.nodes.size());
