@@ -105,7 +105,7 @@ std::vector<std::pair<Vec3, std::string>> candidate_directions(const Mesh& mesh)
 }  // namespace
 
 Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::string& mode,
-                               const std::function<PoseSupport(const Mesh& rotated)>& support,
+                               const std::function<PoseSupport(const Mesh& rotated, const Rotation& rotation)>& support,
                                size_t evaluate_best) {
     Orientation o;
     const OrientRequest request = parse_orient(mode);
@@ -140,17 +140,18 @@ Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::str
         o.decided_by = "overhang area";
         return o;
     }
-    // Each candidate's tree is independent: build them side by side. Each also indexes the whole
-    // model (about 200 bytes per triangle), so past a million triangles they take turns: memory
-    // stays bounded on huge scans, and the answer is the same either way.
+    // Each candidate's tree is independent: build them side by side. Each holds two copies of the
+    // model (turned, then placed: about 50 bytes a triangle; the caller shares one index between
+    // poses on big models), so past 8 million triangles they take turns: memory stays bounded on
+    // huge scans, and the answer is the same either way.
     auto evaluate = [&](size_t i) {
         auto& c = o.candidates[i];
         Mesh rotated = mesh;
         for (auto& v : rotated.vertices) v = c.rotation.apply(v);
-        c.support = support(rotated);
+        c.support = support(rotated, c.rotation);
         c.evaluated = true;
     };
-    if (mesh.faces.size() > 1'000'000)
+    if (mesh.faces.size() > 8'000'000)
         for (size_t i = 0; i < n_eval; ++i) evaluate(i);
     else
         tbb::parallel_for(size_t(0), n_eval, evaluate);

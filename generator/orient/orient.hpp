@@ -64,9 +64,10 @@ Rotation rotation_to_down(const Vec3& down);
 
 // `mode` is an --orient value (parse_orient: "auto", "keep" or "RX,RY,RZ"); throws ParameterError
 // for anything else.
-// `support` is called for the best few candidates in auto mode (placed mesh -> what its tree needs).
+// `support` is called for the best few candidates in auto mode (the mesh rotated by `rotation`,
+// and that rotation -> what its tree needs), on several threads at once.
 Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::string& mode,
-                               const std::function<PoseSupport(const Mesh& rotated)>& support,
+                               const std::function<PoseSupport(const Mesh& rotated, const Rotation& rotation)>& support,
                                std::size_t evaluate_best = 4);
 
 }  // namespace cs

@@ -240,8 +240,8 @@ OverhangOptions overhang_options(const Params& p) {
 double coverage_reach(double sampling_distance) { return std::sqrt(0.5) * sampling_distance; }
 
 bool covers(const Vec3& sample, const Vec3& x, double reach, double critical_angle_deg) {
-    const double rise = surface_rise(reach, critical_angle_deg);
-    return horizontal_distance(sample, x) <= reach && std::abs(sample.z - x.z) <= rise;
+    // The rise (a tangent) only for points within reach: most points asked about are not.
+    return horizontal_distance(sample, x) <= reach && std::abs(sample.z - x.z) <= surface_rise(reach, critical_angle_deg);
 }
 
 bool rests_on_material(const ModelQuery& model, const Vec3& x, double touching_space) {

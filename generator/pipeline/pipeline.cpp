@@ -84,20 +84,31 @@ double scale_to_mm(Mesh& mesh, const Job& job, std::vector<std::string>& warning
 // choose_orientation with the support each candidate pose really needs. Candidate poses are
 // compared by trees grown from samples twice as sparse: a quarter of the work, and the ranking of
 // poses holds (the chosen pose's tree is then grown in full).
+// Past kIndexOnceTriangles the model is indexed once, as given, and each pose asks that index its
+// questions turned into the pose: on big scans indexing took longer than judging a pose. Turning
+// rounds, and a question that grazes the model (common on axis-aligned CAD parts, rare on scans)
+// may then go the other way, so smaller models keep an index per pose. Either way the chosen pose
+// gets its own index afterwards: what is written depends on the turning only through the choice.
+constexpr std::size_t kIndexOnceTriangles = 200'000;
+
 Orientation orient_by_support(const Mesh& scaled, const Params& p, const std::string& orient) {
     Params coarse = p;
     coarse.sampling_distance = 2 * p.sampling_distance;
     OverhangOptions coarse_oo = overhang_options(coarse);
     coarse_oo.bridge_sampling = p.sampling_distance;  // holes judged at the run's spacing
+    std::unique_ptr<const ModelQuery> as_given;
+    if (scaled.faces.size() > kIndexOnceTriangles && parse_orient(orient).mode == OrientMode::automatic)
+        as_given = std::make_unique<const ModelQuery>(scaled);
     // A user's support blockers are in the chosen pose's coordinates: no pose is judged with them.
-    return choose_orientation(scaled, p, orient, [&](const Mesh& rotated) {
+    return choose_orientation(scaled, p, orient, [&](const Mesh& rotated, const Rotation& rotation) {
         Placement pl;
         Rotation id;
         Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
         auto samples = sample_overhangs(placed, coarse_oo);
         // What finish_supports computes of the volume, without the mesh a pose is not judged by.
-        const ModelQuery q(placed);
-        const SizedTree sized = grow_cheaper_tree(q, samples.samples, coarse);
+        const auto q = as_given ? std::make_unique<const ModelQuery>(placed, *as_given, rotation.m, pl.translation)
+                                : std::make_unique<const ModelQuery>(placed);
+        const SizedTree sized = grow_cheaper_tree(*q, samples.samples, coarse);
         const double volume = solid_volume(build_bodies(sized, coarse), coarse.wall_thickness);
         return PoseSupport{volume, sized.tree.stats.model_contacts, bounding_box(placed).size().z};
     });

@@ -53,6 +53,17 @@ std::string stem_of(const std::string& file) { return fs::path(file).stem().stri
 
 bool contains(const std::string& hay, const std::string& needle) { return hay.find(needle) != std::string::npos; }
 
+// The run exited with `code` and its output says every one of `words`; on failure, the code, the
+// words it did not say and all it printed.
+testing::AssertionResult exits_saying(const CliRun& r, int code, const std::vector<std::string>& words) {
+    std::string missing;
+    for (const auto& w : words)
+        if (!contains(r.out, w)) missing += "\n  does not say: " + w;
+    if (r.code == code && missing.empty()) return testing::AssertionSuccess();
+    return testing::AssertionFailure() << "exit code " << r.code << " (expected " << code << ")" << missing << "\n"
+                                       << r.out;
+}
+
 // A T (stem and a cantilevered plate): a small good mesh with overhangs. Run it with
 // --orient keep: upside down (plate on the bed, which auto orientation picks) it needs no support.
 std::string write_good_mesh(const TempDir& dir, const std::string& name = "tee.stl") {
@@ -348,9 +359,8 @@ TEST(Cli, UnwritableOutputDirectoryFailsWithExitSix) {
     // /proc accepts no new directories, not even from root.
     TempDir tmp;
     std::string input = write_good_mesh(tmp);
-    CliRun r = cli(quote(input) + " --out /proc/clever-support-test-out");
-    EXPECT_EQ(r.code, kExitOutputFailed) << r.out;
-    EXPECT_TRUE(contains(r.out, "cannot create the output directory")) << r.out;
+    EXPECT_TRUE(exits_saying(cli(quote(input) + " --out /proc/clever-support-test-out"), kExitOutputFailed,
+                             {"cannot create the output directory"}));
     EXPECT_FALSE(fs::exists("/proc/clever-support-test-out"));
 }
 
@@ -376,9 +386,8 @@ TEST(Cli, OutputSetIsAllOrNothingWhenOneRenameFails) {
     std::string input = write_good_mesh(tmp);
     std::string out = tmp / "out";
     fs::create_directories(out + "/tee.report.json");
-    CliRun r = cli(quote(input) + " --orient keep --out " + quote(out));
-    EXPECT_EQ(r.code, kExitOutputFailed) << r.out;
-    EXPECT_TRUE(contains(r.out, "tee.report.json")) << r.out;
+    EXPECT_TRUE(
+        exits_saying(cli(quote(input) + " --orient keep --out " + quote(out)), kExitOutputFailed, {"tee.report.json"}));
     EXPECT_EQ(entries(out), std::set<std::string>{"tee.report.json"}) << "outputs left behind by a failed run";
 }
 
@@ -386,9 +395,8 @@ TEST(Cli, OutputPathThatIsAFileFailsWithExitSix) {
     TempDir tmp;
     std::string input = write_good_mesh(tmp);
     std::ofstream(tmp / "afile") << "x";
-    CliRun r = cli(quote(input) + " --out " + quote(tmp / "afile"));
-    EXPECT_EQ(r.code, kExitOutputFailed) << r.out;
-    EXPECT_TRUE(contains(r.out, "not a directory")) << r.out;
+    EXPECT_TRUE(
+        exits_saying(cli(quote(input) + " --out " + quote(tmp / "afile")), kExitOutputFailed, {"not a directory"}));
     EXPECT_EQ(read_text(tmp / "afile"), "x");
 }
 
@@ -407,10 +415,8 @@ TEST(Cli, UnknownPresetIsAUsageError) {
 TEST(Cli, NegativeKIsAUsageError) {
     TempDir tmp;
     std::string input = write_good_mesh(tmp);
-    CliRun r = cli(quote(input) + " --k -1 --out " + quote(tmp / "out"));
-    EXPECT_EQ(r.code, kExitUsage) << r.out;
-    EXPECT_TRUE(contains(r.out, "k = -1")) << r.out;
-    EXPECT_TRUE(contains(r.out, "out of range")) << r.out;
+    EXPECT_TRUE(exits_saying(cli(quote(input) + " --k -1 --out " + quote(tmp / "out")), kExitUsage,
+                             {"k = -1", "out of range"}));
     EXPECT_TRUE(entries(tmp / "out").empty());
 }
 
@@ -420,31 +426,22 @@ TEST(Cli, OtherBadParametersAreUsageErrors) {
     for (const char* bad : {"--critical-angle 95", "--sampling 0", "--d-min 3 --d-max 2", "--strategy bush",
                             "--scale 0", "--no-such-flag", "--k abc"}) {
         SCOPED_TRACE(bad);
-        CliRun r = cli(quote(input) + " " + bad + " --out " + quote(tmp / "out"));
-        EXPECT_EQ(r.code, kExitUsage) << r.out;
-        EXPECT_TRUE(contains(r.out, "clever-support: error: ")) << r.out;
+        EXPECT_TRUE(exits_saying(cli(quote(input) + " " + bad + " --out " + quote(tmp / "out")), kExitUsage,
+                                 {"clever-support: error: "}));
     }
     EXPECT_TRUE(entries(tmp / "out").empty());
 }
 
 TEST(Cli, NoInputIsAUsageError) {
-    CliRun r = cli("");
-    EXPECT_EQ(r.code, kExitUsage) << r.out;
-    EXPECT_TRUE(contains(r.out, "no input mesh")) << r.out;
+    EXPECT_TRUE(exits_saying(cli(""), kExitUsage, {"no input mesh"}));
 }
 
 TEST(Cli, PresetsListsTheBuiltInPresets) {
-    CliRun r = cli("presets");
-    EXPECT_EQ(r.code, 0) << r.out;
-    EXPECT_TRUE(contains(r.out, "generic-0.4")) << r.out;
-    EXPECT_TRUE(contains(r.out, "replicator2-pla")) << r.out;
+    EXPECT_TRUE(exits_saying(cli("presets"), 0, {"generic-0.4", "replicator2-pla"}));
 }
 
 TEST(Cli, HelpExitsZeroWithExamples) {
-    CliRun r = cli("--help");
-    EXPECT_EQ(r.code, 0) << r.out;
-    EXPECT_TRUE(contains(r.out, "Example")) << r.out;
-    EXPECT_TRUE(contains(r.out, "--out")) << r.out;
+    EXPECT_TRUE(exits_saying(cli("--help"), 0, {"Example", "--out"}));
 }
 
 // ---------------------------------------------------------------- check
@@ -454,22 +451,19 @@ TEST(Cli, CheckOnABrokenPairExitsFour) {
     std::string model = tmp / "model.stl", supports = tmp / "supports.stl";
     write_stl(model, cs::test::t_shape());
     write_stl(supports, cs::test::box({30, 0, 5}, {32, 2, 7}));  // floating, covering nothing
-    CliRun r = cli("check --model " + quote(model) + " --supports " + quote(supports));
-    EXPECT_EQ(r.code, kExitCheckFailed) << r.out;
-    EXPECT_TRUE(contains(r.out, "FAIL coverage")) << r.out;
-    EXPECT_TRUE(contains(r.out, "FAIL grounding")) << r.out;
-    CliRun j = cli("check --json --model " + quote(model) + " --supports " + quote(supports));
-    EXPECT_EQ(j.code, kExitCheckFailed) << j.out;
-    EXPECT_TRUE(contains(j.out, "\"ok\": false")) << j.out;
+    EXPECT_TRUE(exits_saying(cli("check --model " + quote(model) + " --supports " + quote(supports)), kExitCheckFailed,
+                             {"FAIL coverage", "FAIL grounding"}));
+    EXPECT_TRUE(exits_saying(cli("check --json --model " + quote(model) + " --supports " + quote(supports)),
+                             kExitCheckFailed, {"\"ok\": false"}));
 }
 
 TEST(Cli, CheckWithABadModelFileExitsThree) {
     TempDir tmp;
     std::string supports = tmp / "supports.stl";
     write_stl(supports, cs::test::box({0, 0, 0}, {1, 1, 1}));
-    CliRun r = cli("check --model " + quote(bad_dir() + "/truncated.stl") + " --supports " + quote(supports));
-    EXPECT_EQ(r.code, kExitBadInput) << r.out;
-    EXPECT_TRUE(contains(r.out, "truncated binary STL")) << r.out;
+    EXPECT_TRUE(
+        exits_saying(cli("check --model " + quote(bad_dir() + "/truncated.stl") + " --supports " + quote(supports)),
+                     kExitBadInput, {"truncated binary STL"}));
 }
 
 TEST(Cli, CheckWithoutArgumentsIsAUsageError) {
@@ -556,9 +550,7 @@ TEST(FirstHour, CheckTakesTheRunFolderWithItsPreset) {
     EXPECT_EQ(parsed["settings"]["preset"], "prusa-mk4-pla");
     EXPECT_EQ(parsed["settings"]["critical_angle_deg"], 55);
     // Not a run.
-    CliRun none = cli("check " + quote(tmp.path));
-    EXPECT_EQ(none.code, kExitUsage) << none.out;
-    EXPECT_TRUE(contains(none.out, "no generated .scad in this folder")) << none.out;
+    EXPECT_TRUE(exits_saying(cli("check " + quote(tmp.path)), kExitUsage, {"no generated .scad in this folder"}));
 }
 
 TEST(FirstHour, BlockedRegionsAreLeftOutOnPurpose) {
@@ -566,16 +558,9 @@ TEST(FirstHour, BlockedRegionsAreLeftOutOnPurpose) {
     std::string out = tmp / "out", block = "2,-5,0,10,5,10";  // under the plate's right half
     ASSERT_EQ(cli(quote(write_good_mesh(tmp)) + " --orient keep --block " + block + " --out " + quote(out)).code, 0);
     const std::string meshes = " --model " + quote(out + "/tee.model.stl") + " --supports " + quote(out + "/tee.supports.stl");
-    CliRun run = cli("check " + quote(out));
-    EXPECT_EQ(run.code, 0) << run.out;
-    EXPECT_TRUE(contains(run.out, "left out on purpose")) << run.out;
-    EXPECT_TRUE(contains(run.out, "1 region left out on purpose")) << run.out;
-    CliRun unaware = cli("check" + meshes);
-    EXPECT_EQ(unaware.code, kExitCheckFailed) << unaware.out;
-    EXPECT_TRUE(contains(unaware.out, "FAIL coverage")) << unaware.out;
-    CliRun told = cli("check --block " + block + meshes);
-    EXPECT_EQ(told.code, 0) << told.out;
-    EXPECT_TRUE(contains(told.out, "blocked region: left out on purpose")) << told.out;
+    EXPECT_TRUE(exits_saying(cli("check " + quote(out)), 0, {"left out on purpose", "1 region left out on purpose"}));
+    EXPECT_TRUE(exits_saying(cli("check" + meshes), kExitCheckFailed, {"FAIL coverage"}));
+    EXPECT_TRUE(exits_saying(cli("check --block " + block + meshes), 0, {"blocked region: left out on purpose"}));
 }
 
 TEST(FirstHour, ASlotThePrinterBridgesGetsNoSupport) {
@@ -637,22 +622,21 @@ TEST(FirstHour, RegrowTakesDefinesAndOut) {
                 contains(volumes[2], "key=\"thin_walls\" value=\"0\""))
         << volumes[2];
     EXPECT_EQ(read_text(out + "/tee.scad"), original) << "the folder it came from is left alone";
-    CliRun typo = cli("regrow " + quote(out + "/tee.scad") + " -D samplin=2");
-    EXPECT_EQ(typo.code, kExitUsage) << typo.out;
-    EXPECT_TRUE(contains(typo.out, "did you mean `sampling`")) << typo.out;
+    EXPECT_TRUE(exits_saying(cli("regrow " + quote(out + "/tee.scad") + " -D samplin=2"), kExitUsage,
+                             {"did you mean `sampling`"}));
 }
 
 TEST(FirstHour, SaysWhatWasDropped) {
     TempDir tmp;
     // A support point in a slit narrower than a tip: no strut fits under it.
     std::string out = tmp / "out";
-    CliRun point = cli(quote(write_tunnel(tmp, 0.6)) + " --orient keep --support-point 0,0,4 --out " + quote(out));
-    EXPECT_EQ(point.code, 0) << point.out;
-    EXPECT_TRUE(contains(point.out, "support point [0, 0, 4] (on the model at (0.00, 0.00, 4.00)) got no tip")) << point.out;
+    EXPECT_TRUE(
+        exits_saying(cli(quote(write_tunnel(tmp, 0.6)) + " --orient keep --support-point 0,0,4 --out " + quote(out)), 0,
+                     {"support point [0, 0, 4] (on the model at (0.00, 0.00, 4.00)) got no tip"}));
     // A floating shell.
-    CliRun shell = cli(quote(bad_dir() + "/disjoint_shells.stl") + " --orient keep --out " + quote(tmp / "shells"));
-    EXPECT_EQ(shell.code, 0) << shell.out;
-    EXPECT_TRUE(contains(shell.out, "floats")) << shell.out;
+    EXPECT_TRUE(
+        exits_saying(cli(quote(bad_dir() + "/disjoint_shells.stl") + " --orient keep --out " + quote(tmp / "shells")),
+                     0, {"floats"}));
     EXPECT_FALSE(contains(cli(quote(write_good_mesh(tmp)) + " --orient keep --out " + quote(tmp / "t")).out, "floats"));
     // Lone struts: a 1 mm post 30 mm tall with an arm to each side, one sample under each arm
     // (at 5 mm sampling), on the bed only: two 28 mm struts, 1 mm wide, that nothing joins.
@@ -661,24 +645,20 @@ TEST(FirstHour, SaysWhatWasDropped) {
     g.fill({-6, -0.5, 29}, {6, 0.5, 30});
     std::string post = tmp / "post.stl";
     write_stl(post, g.mesh());
-    CliRun lone = cli(quote(post) + " --orient keep --buildplate-only --sampling 5 --out " + quote(tmp / "post"));
-    EXPECT_EQ(lone.code, 0) << lone.out;
-    EXPECT_TRUE(contains(lone.out, "a lone strut from")) << lone.out;
-    EXPECT_TRUE(contains(lone.out, "comfortable range")) << lone.out;
+    EXPECT_TRUE(
+        exits_saying(cli(quote(post) + " --orient keep --buildplate-only --sampling 5 --out " + quote(tmp / "post")), 0,
+                     {"a lone strut from", "comfortable range"}));
 }
 
 TEST(FirstHour, ClearWordsForMistakes) {
     TempDir tmp;
     std::string tee = write_good_mesh(tmp);
-    CliRun flag = cli(quote(tee) + " --sampel 2");
-    EXPECT_EQ(flag.code, kExitUsage) << flag.out;
-    EXPECT_TRUE(contains(flag.out, "unknown option --sampel (did you mean `--sampling`?)")) << flag.out;
-    CliRun sub = cli("chek --model " + quote(tee));
-    EXPECT_EQ(sub.code, kExitUsage) << sub.out;
-    EXPECT_TRUE(contains(sub.out, "unknown subcommand 'chek' (did you mean `check`?)")) << sub.out;
-    CliRun preset = cli(quote(tee) + " --preset prusa-mk4-pal");
-    EXPECT_EQ(preset.code, kExitUsage) << preset.out;
-    EXPECT_TRUE(contains(preset.out, "did you mean `prusa-mk4-pla`")) << preset.out;
+    EXPECT_TRUE(exits_saying(cli(quote(tee) + " --sampel 2"), kExitUsage,
+                             {"unknown option --sampel (did you mean `--sampling`?)"}));
+    EXPECT_TRUE(exits_saying(cli("chek --model " + quote(tee)), kExitUsage,
+                             {"unknown subcommand 'chek' (did you mean `check`?)"}));
+    EXPECT_TRUE(
+        exits_saying(cli(quote(tee) + " --preset prusa-mk4-pal"), kExitUsage, {"did you mean `prusa-mk4-pla`"}));
     CliRun checkflag = cli("check --blok 0,0,0,1,1,1");
     EXPECT_TRUE(contains(checkflag.out, "did you mean `--block`")) << checkflag.out;
     // A -D with no value is named as typed, before OpenSCAD makes up a line number for it.

@@ -65,7 +65,7 @@ Mesh tee() { return extrude_xz({{-3, 0}, {3, 0}, {3, 20}, {15, 20}, {15, 24}, {-
 // Runs the real orientation search (overhang area, then support volume of real trees).
 Orientation orient(const Mesh& m, const std::string& mode = "auto") {
     Params p;
-    return choose_orientation(m, p, mode, [&](const Mesh& rotated) {
+    return choose_orientation(m, p, mode, [&](const Mesh& rotated, const Rotation&) {
         Placement pl;
         Rotation id;
         Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
