@@ -17,11 +17,20 @@ namespace {
 constexpr double kStation = 0.5;
 // A wall shorter than this is not worth a line of its own; its samples stay with the tree.
 constexpr double kMinWall = 1.5;
-// How far from a wall's top a point of the ceiling counts as carried by it: just under the judge's
-// lattice reach (0.71 of the sampling distance, README "check"), the generator's own margin.
-constexpr double kWallReach = 0.69;
-// Probes per side of a sample's lattice cell when asking whether the walls carry all of it.
-constexpr int kCellProbes = 11;
+// Whether the walls carry a sample is asked at points of the surface around it (DownSurface) this
+// fraction of the reach apart.
+constexpr double kProbeStepOfReach = 0.06;
+// A point of the surface lies within this many probe steps of a probed one (DownSurface).
+constexpr double kProbeCover = 1.21;
+// The walls carry a point within this fraction of coverage_reach of a wall's contact. `check`
+// judges at its lattice reach (coverage_reach or a hair more), so what is left is for the probes
+// and for where `check` samples a wall's top: a point of the surface lies within 0.073 of the
+// reach of a probed one (1.21 steps of 0.06); `check`'s points along a top lie up to an eighth of
+// a millimetre along it from the nearest point measured here, which adds under 0.01 mm at this
+// distance (it is across the line of sight). 0.9 leaves 0.02 of the reach to spare.
+constexpr double kWallReachMargin = 0.9;
+// Points along a wall's top where the ceiling right above is asked for (mm).
+constexpr double kContactStep = 0.25;
 // A region needs this many samples to be worth walls.
 constexpr std::size_t kMinRegion = 4;
 
@@ -57,6 +66,9 @@ std::optional<double> floor_under(const ModelQuery& q, const Vec3& x, const Para
 double same_surface_rise(const Params& p, double reach) {
     return surface_rise(reach, p.critical_angle) + p.layer_height;
 }
+
+// How far from a wall's contact a point of the ceiling counts as carried by it.
+double wall_reach(const Params& p) { return kWallReachMargin * coverage_reach(p.sampling_distance); }
 
 // A wall while it is laid out: stations along a line, the top (one gap under the ceiling) and the
 // floor (the bed, or one gap over the model) at each; cut into flat pieces at the end.
@@ -268,20 +280,45 @@ double walls_route_seconds(const SlicerRoute& r, const RegionWalls& w, const Par
     return s + layers * tree_route_seconds(r, pieces, 0, (pieces - 1) * p.ceiling_span);
 }
 
+// Which way the rows run: where the ceiling is level. A sloping or round ceiling then gets long
+// flat pieces, each a contact along its whole top (a row down a slope would be a staircase of
+// short pieces, each holding the ceiling at its middle only). Level is judged between lattice
+// neighbours: along x or y, whichever changes height less, where they differ by more than half a
+// layer over a sampling distance on average (a flat piece ends where its ceiling changes by half
+// a layer); else along the region's longer side.
+bool rows_along_x(const Region& r, const XyGrid<std::size_t>& grid, const std::vector<Sample>& samples, const Params& p) {
+    const double sd = p.sampling_distance;
+    double change[2] = {0, 0};
+    std::size_t pairs[2] = {0, 0};
+    for (std::size_t i : r.samples)
+        for (int axis = 0; axis < 2; ++axis) {
+            const Vec3 at = samples[i].p + (axis == 0 ? Vec3{sd, 0, 0} : Vec3{0, sd, 0});
+            grid.visit_near(at, 1, [&](std::size_t j) {
+                if (horizontal_distance(samples[j].p, at) > 0.25 * sd) return false;
+                change[axis] += std::abs(samples[j].p.z - samples[i].p.z), ++pairs[axis];
+                return true;
+            });
+        }
+    if (pairs[0] > 0 && pairs[1] > 0) {
+        const double along_x = change[0] / pairs[0], along_y = change[1] / pairs[1];
+        if (std::abs(along_x - along_y) > 0.5 * p.layer_height) return along_x < along_y;
+    }
+    return r.box.max.x - r.box.min.x >= r.box.max.y - r.box.min.y;
+}
+
 RegionWalls region_walls(const ModelQuery& q, const Region& r, const std::vector<Sample>& samples, const Params& p,
                          double overhang_nz) {
     XyGrid<std::size_t> grid(p.sampling_distance);
     for (std::size_t i : r.samples) grid.insert(samples[i].p, i);
-    const bool along_x = r.box.max.x - r.box.min.x >= r.box.max.y - r.box.min.y;
+    const bool along_x = rows_along_x(r, grid, samples, p);
     const Frame f{along_x};
-    // As few rows as keep every point across within reach of one: the outer rows may stand up to
-    // kWallReach inside the outer samples (those lie on the rim), never nearer them than the
-    // wall's half width and side clearance (nothing is above a wall centred on a rim).
+    // The outer rows as near the outer samples as a wall may stand (its half width and side
+    // clearance inside them: nothing is above a wall centred on a rim), for the rim beyond those
+    // samples; as few rows between as keep them at most the span apart.
     const double inset = 0.5 * p.wall_thickness + tip_side_clearance(p) + 0.5 * kStation;
-    const double edge = std::max(inset, 0.95 * kWallReach * p.sampling_distance);
-    const double lo_v = coord(r.box.min, !along_x), hi_v = coord(r.box.max, !along_x);
-    const int gaps = std::max(0, static_cast<int>(std::ceil((hi_v - lo_v - 2 * edge) / p.ceiling_span - 1e-9)));
-    const double spacing = gaps == 0 ? 0 : std::min(p.ceiling_span, (hi_v - lo_v - 2 * inset) / gaps);
+    const double lo_v = coord(r.box.min, !along_x), hi_v = coord(r.box.max, !along_x), across = hi_v - lo_v - 2 * inset;
+    const int gaps = across <= 0 ? 0 : static_cast<int>(std::ceil(across / p.ceiling_span - 1e-9));
+    const double spacing = gaps == 0 ? 0 : across / gaps;
     const double u0 = coord(r.box.min, along_x) - p.sampling_distance, u1 = coord(r.box.max, along_x) + p.sampling_distance;
     std::vector<std::vector<Run>> by_row;
     std::vector<double> row_v;
@@ -340,10 +377,6 @@ RegionWalls region_walls(const ModelQuery& q, const Region& r, const std::vector
     return out;
 }
 
-// A piece this long or longer counts as carrying the ceiling along its whole top; a shorter one
-// at its middle only (a wall's top is judged as a contact along its length where it is long).
-constexpr double kLongPiece = 4.0;
-
 // A run cut into pieces with a flat top and floor: each as long as the ceiling and floor above and
 // below it stay within half a layer, its top the lowest top and its floor the highest floor over
 // it. Neighbouring pieces share the station between them.
@@ -368,54 +401,161 @@ std::vector<CeilingWall> flat_pieces(const Run& r, const Params& p) {
     return out;
 }
 
-// The overhang face (seen from below) above x between heights z0 and z1, where there is one: the
-// point the ray meets it. Rays go up from z0, past the faces of any material they start in or cross
-// (a floor under a low ceiling).
-std::optional<Vec3> overhang_between(const ModelQuery& q, const Vec3& x, double z0, double z1, double overhang_nz) {
-    Vec3 from{x.x, x.y, z0};
-    for (int crossings = 0; crossings < 8; ++crossings) {
+// Where the model right above a point of a wall's top holds the ceiling, as `check` finds a
+// contact: the first face above faces down and lies no more than a gap and a layer up.
+std::optional<Vec3> contact_above(const ModelQuery& q, const Vec3& x, const Params& p) {
+    Vec3 from = x;
+    for (int grazes = 0; grazes < 8; ++grazes) {
         auto hit = q.first_hit(from, {0, 0, 1});
-        if (!hit || hit->point.z > z1) return std::nullopt;
+        if (!hit) return std::nullopt;
         const Vec3 n = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
-        if (n.z < overhang_nz * norm(n)) return hit->point;
-        from = hit->point + Vec3{0, 0, 1e-4};
-    }
-    return from;  // a stack of faces: count it as surface to carry
-}
-
-// Does every point of the sample's lattice cell on its own stretch of surface lie within reach of
-// a wall's top, measured in 3D from where the surface is (as `check` measures it: on a round
-// ceiling a point beside the wall lies higher or lower than the wall's top)?
-bool walls_carry(const ModelQuery& q, const XyGrid<Vec3>& tops, const Vec3& s, const Params& p, double overhang_nz) {
-    const double sd = p.sampling_distance, reach = kWallReach * sd, rise = same_surface_rise(p, reach);
-    const long rings = static_cast<long>(std::ceil(reach / tops.cell())) + 1;
-    auto within = [&](const Vec3& x) {
-        return tops.visit_near(x, rings, [&](const Vec3& t) { return distance(t, x) <= reach; });
-    };
-    if (!within(s)) return false;
-    for (int i = 0; i < kCellProbes; ++i)
-        for (int j = 0; j < kCellProbes; ++j) {
-            const Vec3 x{s.x + sd * (double(i) / (kCellProbes - 1) - 0.5), s.y + sd * (double(j) / (kCellProbes - 1) - 0.5), s.z};
-            const auto surface = overhang_between(q, x, s.z - 2 * rise, s.z + 2 * rise, overhang_nz);
-            if (surface && !within(*surface)) return false;
-        }
-    return true;
-}
-
-// Points every quarter millimetre along each long piece's top, at the ceiling's height (a gap
-// above); a short piece's middle.
-XyGrid<Vec3> wall_tops(const std::vector<CeilingWall>& walls, const Params& p) {
-    XyGrid<Vec3> grid(1.0);
-    for (const auto& w : walls) {
-        const Vec3 a{w.from.x, w.from.y, w.top + p.gap}, b{w.to.x, w.to.y, w.top + p.gap};
-        if (horizontal_distance(a, b) < kLongPiece) {
-            grid.insert((a + b) * 0.5, (a + b) * 0.5);
+        if (std::abs(n.z) <= 1e-9 * norm(n)) {  // along a vertical face: the model is not above
+            from = hit->point + Vec3{0, 0, 1e-6};
             continue;
         }
-        const int n = std::max(1, static_cast<int>(std::ceil(horizontal_distance(a, b) / 0.25)));
-        for (int k = 0; k <= n; ++k) grid.insert(a + (b - a) * (double(k) / n), a + (b - a) * (double(k) / n));
+        if (n.z > 0 || hit->point.z - x.z > p.gap + p.layer_height) return std::nullopt;
+        return hit->point;
     }
-    return grid;
+    return std::nullopt;
+}
+
+// Where the walls hold the ceiling up, as `check` judges their solids (README "check"): a piece
+// whose top is long (two coverage reaches, three times its thickness) along its whole top, one
+// whose top is short at its middle. A piece within 2 % of either bound may be judged either way
+// (`check`'s lattice reach is coverage_reach rounded up): it counts as holding nothing. Each line
+// of contacts is kept as short segments between points the model is right above.
+struct Contacts {
+    std::vector<std::pair<Vec3, Vec3>> segments;
+    XyGrid<std::size_t> near{1.0};  // by each segment's middle
+};
+constexpr double kUnsureTop = 1.02;
+
+Contacts wall_contacts(const ModelQuery& q, const std::vector<CeilingWall>& walls, const Params& p) {
+    Contacts out;
+    auto add = [&](const Vec3& a, const Vec3& b) {
+        out.near.insert((a + b) * 0.5, out.segments.size());
+        out.segments.push_back({a, b});
+    };
+    const double two_reaches = 2 * coverage_reach(p.sampling_distance);
+    for (const auto& w : walls) {
+        const Vec3 a{w.from.x, w.from.y, w.top}, b{w.to.x, w.to.y, w.top};
+        const double length = horizontal_distance(a, b);
+        const bool is_long = length >= kUnsureTop * std::max(two_reaches, 3 * w.thickness);
+        if (!is_long) {
+            if (length >= two_reaches && length >= 3 * w.thickness / kUnsureTop) continue;  // unsure
+            if (auto c = contact_above(q, (a + b) * 0.5, p)) add(*c, *c);
+            continue;
+        }
+        const Vec3 d = (b - a) * (1.0 / length), across = Vec3{-d.y, d.x, 0} * (0.5 * w.thickness);
+        const int n = static_cast<int>(std::ceil(length / kContactStep));
+        for (const Vec3 side : {Vec3{}, across, across * -1.0}) {
+            std::optional<Vec3> last;
+            for (int k = 0; k <= n; ++k) {
+                const auto c = contact_above(q, a + side + (b - a) * (double(k) / n), p);
+                if (c) add(last ? *last : *c, *c);
+                last = c;
+            }
+        }
+    }
+    return out;
+}
+
+// Is x within `reach` of a contact of the walls, on the same stretch of surface (overhang.hpp's
+// `covers`, the sampling's own rule)?
+bool near_contact(const Contacts& c, const Vec3& x, double reach, const Params& p) {
+    const long rings = static_cast<long>(std::ceil((reach + kContactStep) / c.near.cell()));
+    return c.near.visit_near(x, rings, [&](std::size_t i) {
+        const auto& [a, b] = c.segments[i];
+        const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
+        const double t = l2 > 0 ? std::clamp(((x.x - a.x) * dx + (x.y - a.y) * dy) / l2, 0.0, 1.0) : 0.0;
+        return covers(a + (b - a) * t, x, reach, p.critical_angle);
+    });
+}
+
+// The model's surface seen from below (faces facing down: overhangs, the steep undersides beside
+// them, rims and ridges), as points: the lattice points (a probe step apart) inside each face, and
+// points as far apart along its edges, its corners among them. A point of such a face lies within
+// 1.21 probe steps of one (half a diagonal to the nearest lattice point, or across the face's
+// edge to it and half a step along the edge). Made cell by cell on first use.
+class DownSurface {
+public:
+    DownSurface(const Mesh& m, double step, const Box3& near) : m_(m), step_(step), faces_(kCell), points_(kCell) {
+        for (std::size_t f = 0; f < m.faces.size(); ++f) {
+            const Vec3 &a = m.vertices[m.faces[f][0]], &b = m.vertices[m.faces[f][1]], &c = m.vertices[m.faces[f][2]];
+            if (!(face_normal_unnormalized(m, m.faces[f]).z < 0)) continue;
+            const Box3 box{{std::min({a.x, b.x, c.x}), std::min({a.y, b.y, c.y}), std::min({a.z, b.z, c.z})},
+                           {std::max({a.x, b.x, c.x}), std::max({a.y, b.y, c.y}), std::max({a.z, b.z, c.z})}};
+            if (box.max.x < near.min.x || box.min.x > near.max.x || box.max.y < near.min.y || box.min.y > near.max.y ||
+                box.max.z < near.min.z || box.min.z > near.max.z)
+                continue;
+            for (long i = faces_.index(box.min.x); i <= faces_.index(box.max.x); ++i)
+                for (long j = faces_.index(box.min.y); j <= faces_.index(box.max.y); ++j) faces_.insert_at(i, j, f);
+        }
+    }
+
+    // Calls visit(point) for the points within `radius` of c (horizontally) until it returns true.
+    template <typename Visit>
+    bool visit_near(const Vec3& c, double radius, Visit visit) {
+        for (long i = points_.index(c.x - radius); i <= points_.index(c.x + radius); ++i)
+            for (long j = points_.index(c.y - radius); j <= points_.index(c.y + radius); ++j)
+                for (const Vec3& x : cell(i, j))
+                    if (horizontal_distance(x, c) <= radius && visit(x)) return true;
+        return false;
+    }
+
+private:
+    static constexpr double kCell = 1.0;
+
+    const std::vector<Vec3>& cell(long i, long j) {
+        if (const auto* done = points_.at(i, j)) return *done;
+        std::vector<Vec3> out;
+        const double x0 = i * kCell, y0 = j * kCell;
+        auto inside_cell = [&](const Vec3& x) { return points_.index(x.x) == i && points_.index(x.y) == j; };
+        if (const auto* faces = faces_.at(i, j))
+            for (std::size_t f : *faces) {
+                const Vec3 &a = m_.vertices[m_.faces[f][0]], &b = m_.vertices[m_.faces[f][1]], &c = m_.vertices[m_.faces[f][2]];
+                for (const auto& [u, v] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) {
+                    const int n = std::max(1, static_cast<int>(std::ceil(horizontal_distance(u, v) / step_)));
+                    for (int k = 0; k < n; ++k)
+                        if (const Vec3 x = u + (v - u) * (double(k) / n); inside_cell(x)) out.push_back(x);
+                }
+                // Lattice points of the cell inside the face (projected), z from its plane.
+                const double det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+                if (std::abs(det) < 1e-12) continue;
+                const double lo_x = std::max(x0, std::min({a.x, b.x, c.x})), hi_x = std::min(x0 + kCell, std::max({a.x, b.x, c.x}));
+                const double lo_y = std::max(y0, std::min({a.y, b.y, c.y})), hi_y = std::min(y0 + kCell, std::max({a.y, b.y, c.y}));
+                for (double x = std::ceil(lo_x / step_) * step_; x <= hi_x; x += step_)
+                    for (double y = std::ceil(lo_y / step_) * step_; y <= hi_y; y += step_) {
+                        const double l1 = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / det;
+                        const double l2 = ((b.x - a.x) * (y - a.y) - (x - a.x) * (b.y - a.y)) / det;
+                        if (l1 < 0 || l2 < 0 || l1 + l2 > 1) continue;
+                        const Vec3 pt{x, y, a.z + l1 * (b.z - a.z) + l2 * (c.z - a.z)};
+                        if (inside_cell(pt)) out.push_back(pt);
+                    }
+            }
+        points_.insert_at(i, j, Vec3{});  // marks the cell made (an empty list stays findable)
+        auto& stored = const_cast<std::vector<Vec3>&>(*points_.at(i, j));
+        stored = std::move(out);
+        return stored;
+    }
+
+    const Mesh& m_;
+    double step_;
+    XyGrid<std::size_t> faces_;
+    XyGrid<Vec3> points_;
+};
+
+// Do the walls carry everything the sample at s covers: every point of the model's surface seen
+// from below within coverage_reach of it on its own stretch of surface (overhang.hpp's `covers`,
+// as the sampling counts it) lies within the walls' reach of a contact? Then its tip may go:
+// `check` finds every point it held within its own reach of a wall.
+bool walls_carry(DownSurface& surface, const Contacts& contacts, const Vec3& s, const Params& p) {
+    const double reach = wall_reach(p), r = coverage_reach(p.sampling_distance);
+    const double disc = r + kProbeCover * kProbeStepOfReach * r;  // every point within r has a probe in it
+    if (!near_contact(contacts, s, reach, p)) return false;
+    return !surface.visit_near(s, disc, [&](const Vec3& x) {
+        return covers(s, x, disc, p.critical_angle) && !near_contact(contacts, x, reach, p);
+    });
 }
 
 // Does any wall's solid (its width across, foot to top) overlap one of the boxes?
@@ -433,26 +573,43 @@ bool enters_blocker(const std::vector<Run>& walls, const std::vector<Box3>& bloc
 }  // namespace
 
 Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
-                          const TreeCounter& tree_count, const std::vector<Box3>& blockers) {
+                          const TreeCounter& tree_count, const std::vector<Box3>& blockers, double most_left) {
     Ceilings out;
     if (p.ceiling_span <= 0 || p.strategy != Strategy::tree) {
         out.rest = samples;
         return out;
     }
     const double overhang_nz = -std::sin(deg_to_rad(p.critical_angle));
-    for (const Region& r : free_regions(q, samples, p)) {
+    const std::vector<Region> regions = free_regions(q, samples, p);
+    if (regions.empty()) {
+        out.rest = samples;
+        return out;
+    }
+    // The surface a sample near the walls may cover: around every region, as far as a sample
+    // within reach of its walls covers, and more.
+    Box3 near = regions.front().box;
+    for (const Region& r : regions)
+        near.min = {std::min(near.min.x, r.box.min.x), std::min(near.min.y, r.box.min.y), std::min(near.min.z, r.box.min.z)},
+        near.max = {std::max(near.max.x, r.box.max.x), std::max(near.max.y, r.box.max.y), std::max(near.max.z, r.box.max.z)};
+    const double margin = 2 * p.sampling_distance + 2 * coverage_reach(p.sampling_distance);
+    near.min = near.min - Vec3{margin, margin, margin}, near.max = near.max + Vec3{margin, margin, margin};
+    DownSurface surface(q.mesh(), kProbeStepOfReach * coverage_reach(p.sampling_distance), near);
+    for (const Region& r : regions) {
         RegionWalls w = region_walls(q, r, samples, p, overhang_nz);
         if (w.walls.empty() || enters_blocker(w.walls, blockers, p)) continue;
         // The region as a tree, against its walls plus a tree for what they leave (rims, ends).
         std::vector<CeilingWall> pieces;
         for (const Run& run : w.walls)
             for (auto& piece : flat_pieces(run, p)) pieces.push_back(piece);
-        const XyGrid<Vec3> own_tops = wall_tops(pieces, p);
+        const Contacts own_tops = wall_contacts(q, pieces, p);
         std::vector<Sample> own, left;
         for (std::size_t i : r.samples) {
             own.push_back(samples[i]);
-            if (!walls_carry(q, own_tops, samples[i].p, p, overhang_nz)) left.push_back(samples[i]);
+            if (!walls_carry(surface, own_tops, samples[i].p, p)) left.push_back(samples[i]);
         }
+        // Pricing grows the region's tree twice (for all its samples, and for those the walls
+        // leave): the stage's cost. Walls that leave a tree under most of the region only add to it.
+        if (left.size() > most_left * own.size()) continue;
         const TreeCount t = tree_count(own), rest = left.empty() ? TreeCount{} : tree_count(left);
         auto tree_s = [](const SlicerRoute& route, const TreeCount& c) {
             return tree_route_seconds(route, c.island_layers, c.outline_mm, c.hop_mm);
@@ -471,9 +628,9 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         out.rest = samples;
         return out;
     }
-    const XyGrid<Vec3> tops = wall_tops(out.walls, p);
+    const Contacts tops = wall_contacts(q, out.walls, p);
     for (const Sample& s : samples) {
-        if (walls_carry(q, tops, s.p, p, overhang_nz)) ++out.covered;
+        if (walls_carry(surface, tops, s.p, p)) ++out.covered;
         else out.rest.push_back(s);
     }
     return out;

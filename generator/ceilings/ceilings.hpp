@@ -10,8 +10,9 @@
 //   support_ceilings(model, samples, p, tree_count, blockers) -> Ceilings{walls, rest, ...}
 //     regions   samples whose fall to the bed is free, joined where lattice neighbours lie on the
 //               same stretch of surface
-//     rows      along the region's longer side, at most ceiling_span apart; each row is cut into
-//               walls where the ceiling above it is an overhang of this region all across the
+//     rows      at most ceiling_span apart, where the ceiling is level (along x or y, whichever
+//               changes height less, so a sloping or round ceiling gets long flat pieces; else
+//               along the longer side); each row is cut into walls where the ceiling above it is an overhang of this region all across the
 //               wall's width plus tip_side_clearance (a wall beside it, or a hole, ends a wall)
 //     floors    the bed, or a level face of the model (a gap above it): walls under a roof over
 //               the model stand on it as pillars do
@@ -25,9 +26,12 @@
 //               where they cost less than the region's own tree on the Cura route AND on the
 //               PrusaSlicer route (which slicer the user has is not known); the tree is grown
 //               from the region's samples alone and counted by the caller's `tree_count`
-//     coverage  a sample is handed to the walls when every point of its lattice cell on its own
-//               stretch of surface lies within kWallReach of a wall's top; the others stay with
-//               the tree (tips at the ends and rims the walls do not reach).
+//     coverage  a sample is handed to the walls when every point of the surface it covers (as the
+//               sampling counts it: coverage_reach, same stretch of surface) lies within
+//               kWallReachMargin x coverage_reach of a wall's contact as `check` finds them (a
+//               long top along its length, a short one at its middle, where the model is right
+//               above); the others stay with the tree (tips at the ends and rims the walls do not
+//               reach). So `check` finds every point such a sample held within its reach of a wall.
 //
 // Example: a 50 x 10 mm roof 5 mm over the bed, span 3.4 mm: 4 rows of 50 mm, 3 joins, one
 // meander; the roof's 80 samples all go to the walls.
@@ -74,10 +78,19 @@ struct Ceilings {
     double tree_cura_s = 0, tree_prusa_s = 0, walls_cura_s = 0, walls_prusa_s = 0;
 };
 
+// Walls that would leave more than this share of their region's samples to a tree are not priced:
+// the region keeps its tree. Pricing grows the region's tree twice (for all its samples, and for
+// those the walls leave), the stage's whole cost: on menger_sponge3 that took twice as long as
+// growing its tree, for regions the walls left 0.5-0.9 of. On the tuning set no region the time
+// model gave walls left more than 0.37 of them.
+constexpr double kMostLeftToPrice = 0.5;
+
 // A region whose walls would enter one of the user's `support_blockers` (placed-model coordinates)
-// keeps its tree (the tree routes around blockers; a wall cannot).
+// keeps its tree (the tree routes around blockers; a wall cannot). `most_left`: kMostLeftToPrice
+// (tests of the walls' geometry pass 1 to price every region).
 Ceilings support_ceilings(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
-                          const TreeCounter& tree_count, const std::vector<Box3>& support_blockers = {});
+                          const TreeCounter& tree_count, const std::vector<Box3>& support_blockers = {},
+                          double most_left = kMostLeftToPrice);
 
 // Closed, outward-facing mesh of one wall: a box, w.thickness wide across from-to, bottom to top,
 // its faces as triangles.
