@@ -1078,7 +1078,7 @@ def write_speed(out, sp):
         for name, r in sp.get("models", {}).items():
             ss = (r.get("gen") or {}).get("seconds_stages") or {}
             L.append(f"| {name} | " + " | ".join(f_num(ss.get(k), "{:.3f}") for k in stages) + " |")
-    L += ["", "Reproduce: `nice -n 10 python3 bench/run_bench.py --speed --no-build --jobs 1` (add `--models a,b` for a "
+    L += ["", "Reproduce: `nice -n 10 python3 bench/run_bench.py --speed --jobs 1` (add `--models a,b` for a "
           "subset; `--reuse-cura` keeps an earlier run's Cura slices of a byte-identical placed model)."]
     open(os.path.join(out, "speed.md"), "w").write("\n".join(L) + "\n")
 

@@ -575,7 +575,9 @@ bool enters_blocker(const std::vector<Run>& walls, const std::vector<Box3>& bloc
 Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
                           const TreeCounter& tree_count, const std::vector<Box3>& blockers, double most_left) {
     Ceilings out;
-    if (p.ceiling_span <= 0 || p.strategy != Strategy::tree) {
+    // Rows farther apart than twice the walls' reach (and a wall) carry nothing between them.
+    const bool rows_reach = p.ceiling_span <= 2 * wall_reach(p) + p.wall_thickness;
+    if (p.ceiling_span <= 0 || !rows_reach || p.strategy != Strategy::tree) {
         out.rest = samples;
         return out;
     }

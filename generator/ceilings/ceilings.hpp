@@ -10,7 +10,8 @@
 //   support_ceilings(model, samples, p, tree_count, blockers) -> Ceilings{walls, rest, ...}
 //     regions   samples whose fall to the bed is free, joined where lattice neighbours lie on the
 //               same stretch of surface
-//     rows      at most ceiling_span apart, where the ceiling is level (along x or y, whichever
+//     rows      at most ceiling_span apart (no walls where that is more than twice the walls'
+//               reach and a wall: nothing between two rows would be carried), where the ceiling is level (along x or y, whichever
 //               changes height less, so a sloping or round ceiling gets long flat pieces; else
 //               along the longer side); each row is cut into walls where the ceiling above it is an overhang of this region all across the
 //               wall's width plus tip_side_clearance (a wall beside it, or a hole, ends a wall)

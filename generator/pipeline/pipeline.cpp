@@ -145,7 +145,8 @@ SizedTree grow_cheaper_tree(const ModelQuery& q, const SupportTree& hung, const 
         return t.tree.slicer_cost->prusa_seconds;
     };
     double best_seconds = price(best);
-    for (const GrowOptions& way : {GrowOptions{.lean_merging_leaves = true}, GrowOptions{.pair_leaves_first = true}}) {
+    for (const GrowOptions& way : {GrowOptions{.lean_merging_leaves = true}, GrowOptions{.pair_leaves_first = true},
+                                   GrowOptions{.pair_leaves_first = true, .lean_quads = true}}) {
         SupportTree t = grow_tree(q, hung, p, way, support_blockers);
         // A tree that gives up more samples is cheaper to print for that alone: never a saving.
         if (t.stats.dropped > dropped.dropped || t.stats.dropped_branches > dropped.dropped_branches) continue;

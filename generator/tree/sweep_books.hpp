@@ -8,6 +8,7 @@
 // from the links when the sweep ends, in the order they were made.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <optional>
@@ -73,6 +74,10 @@ public:
     // a tip may slant (clear_tip_foot's limit) while their feet stay half a strut apart: where
     // the feet go, or nothing when either tip would not clear the model there.
     std::optional<std::pair<Vec3, Vec3>> leaned_pair(int u, int v) const;
+    // Four fresh leaves (two leaned pairs) lean their tips towards the middle of their four tips,
+    // as far as a tip may slant, every two feet still half a strut apart: where the feet go, or
+    // nothing when any tip would not clear the model there.
+    std::optional<std::array<Vec3, 4>> leaned_quad(const std::array<int, 4>& leaves) const;
 
     const ModelQuery& model_;
     const Params& p_;
@@ -83,13 +88,18 @@ public:
 
 private:
     bool run_stays_clear(int from, const Vec3& to, double air) const;
+    bool fresh_leaf(int w) const;
+    // May the tip of leaf w lean so that its foot stands at `to` (within its slant, clear of the model)?
+    bool tip_leans_to(int w, const Vec3& to) const;
 
     std::size_t struts_made_ = 0;
 };
 
 // GrowOptions::pair_leaves_first: neighbouring leaves at one height, nearest pairs first, lean
-// their tips towards each other before the sweep starts (leaned_pair). tree/lean_tips.cpp.
-void lean_tips_in_pairs(SweepBooks& b, const std::vector<int>& leaves);
+// their tips towards each other before the sweep starts (leaned_pair); with `quads`
+// (GrowOptions::lean_quads) neighbouring pairs, nearest first, then lean all four tips towards their
+// middle (leaned_quad). tree/lean_tips.cpp.
+void lean_tips_in_pairs(SweepBooks& b, const std::vector<int>& leaves, bool quads);
 
 // After the sweep: where two leaves merge, they lean their tips towards each other and the merge
 // rises to meet them; a merge below a raised one rises too, to where the cones of its parents now

@@ -152,7 +152,7 @@ private:
     }
     // The sweep starts from the leaves, paired first if asked.
     void start(const std::vector<int>& leaves) {
-        if (tree() && options_.pair_leaves_first) lean_tips_in_pairs(*this, leaves);
+        if (tree() && options_.pair_leaves_first) lean_tips_in_pairs(*this, leaves, options_.lean_quads);
         for (int leaf : leaves) activate(leaf);
     }
 

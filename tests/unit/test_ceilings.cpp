@@ -146,7 +146,8 @@ void expect_walls_hold_what_they_take(const Walled& w, const std::string& what) 
 
 // Under sloping and round ceilings (a staircase of wall pieces where rows go down a slope, long flat
 // pieces where they follow a bore), some ending at a rim where the model goes up (nothing holds the
-// rim but the tips and walls), at two spans and sampling distances.
+// rim but the tips and walls), at two spans and sampling distances (at 2 mm sampling the walls'
+// reach lets rows stand at most 3.04 mm apart).
 TEST(Ceilings, WhatTheWallsTakeTheyHoldUnderSlopedAndRoundCeilings) {
     const double pi = 3.14159265358979;
     const std::vector<std::pair<const char*, Mesh>> roofs = {
@@ -159,7 +160,7 @@ TEST(Ceilings, WhatTheWallsTakeTheyHoldUnderSlopedAndRoundCeilings) {
     };
     std::size_t walled_runs = 0;
     for (const auto& [name, roof] : roofs)
-        for (double span : {2.5, 3.4})
+        for (double span : {2.5, 3.0})
             for (double sd : {2.5, 2.0}) {
                 Params p;
                 p.ceiling_span = span;

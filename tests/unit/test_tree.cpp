@@ -576,6 +576,51 @@ TEST(GrowTree, TwoLeavesLeanTheirTipsAndMeetJustBelowThem) {
     }
 }
 
+TEST(GrowTree, FourLeavesPairedFirstLeanToTheirMiddleAndMeetSooner) {
+    // A 2 x 2 block of the sampling lattice under a flat ceiling. Leaned in pairs, the two pairs'
+    // merges sit 2.5 mm apart and meet 1.05 mm lower still: two islands for five more layers. Paired
+    // first (GrowOptions::pair_leaves_first), the pairs then lean all four tips towards the block's
+    // middle, as far as a tip may slant, feet at least half a strut apart: the feet stand within a
+    // strut's width of each other (one island in a slicer) and the four meet layers sooner.
+    Params p;
+    auto grow_block = [&](GrowOptions way) {
+        auto g = std::make_unique<Grown>();
+        g->model = cs::test::box({100, 100, 0}, {101, 101, 1});
+        g->query = std::make_unique<ModelQuery>(g->model);
+        for (double x : {0.0, 2.5})
+            for (double y : {0.0, 2.5}) g->samples.samples.push_back({{x, y, 12}, SampleKind::Face});
+        g->tree = grow_tree(*g->query, g->samples.samples, p, way);
+        expect_valid_tree(*g, p);
+        expect_every_leaf_reaches_ground(g->tree);
+        return g;
+    };
+    auto lowest_merge = [](const SupportTree& t) {
+        double z = INFINITY;
+        for (const Node& n : t.nodes)
+            if (n.kind == NodeKind::Merge) z = std::min(z, n.p.z);
+        return z;
+    };
+    const auto four = grow_block(GrowOptions{.pair_leaves_first = true, .lean_quads = true});
+    const auto pairs = grow_block(GrowOptions{.pair_leaves_first = true});
+    const double tan_c = std::tan(p.critical_angle * kDeg);
+    const Vec3 middle{1.25, 1.25, 0};
+    std::vector<Vec3> feet;
+    for (const Node& n : four->tree.nodes) {
+        if (n.kind != NodeKind::Leaf) continue;
+        EXPECT_NEAR(horizontal_distance(n.tip, n.contact), 0, 1e-9) << "the tip top stays under its sample";
+        EXPECT_LE(horizontal_distance(n.p, n.tip), 0.9 * tan_c * (n.tip.z - n.p.z) + 1e-9) << "as far as a tip may slant";
+        EXPECT_LT(horizontal_distance(n.p, middle), horizontal_distance(n.tip, middle) - 0.5) << "leaned to the middle";
+        feet.push_back(n.p);
+    }
+    ASSERT_EQ(feet.size(), 4u);
+    for (std::size_t i = 0; i < 4; ++i)
+        for (std::size_t j = i + 1; j < 4; ++j) EXPECT_GE(horizontal_distance(feet[i], feet[j]), 0.5 * p.d_min * (1 - 1e-6));
+    for (const Vec3& f : feet) EXPECT_LE(horizontal_distance(f, middle), 0.5 * p.d_min * std::sqrt(2.0) + 1e-9);
+    ASSERT_EQ(four->tree.stats.merges, 3u);
+    ASSERT_EQ(pairs->tree.stats.merges, 3u);
+    EXPECT_GT(lowest_merge(four->tree), lowest_merge(pairs->tree) + 2 * p.layer_height);
+}
+
 TEST(GrowCheaperTree, KeepsTheWayTheSlicerEstimatePrefersUnlessItDropsMore) {
     Params p;
     for (const Mesh& m : {cs::test::table_shape(), cs::test::bridge_shape(), cs::test::cantilever_over_box()}) {
@@ -588,7 +633,8 @@ TEST(GrowCheaperTree, KeepsTheWayTheSlicerEstimatePrefersUnlessItDropsMore) {
         const SupportTree plain = grow_tree(q, samples, p);
         // The expected pick, by the rule: the cheapest that drops no more than the plain growth.
         SupportTree expected = plain;
-        for (const GrowOptions way : {GrowOptions{.lean_merging_leaves = true}, GrowOptions{.pair_leaves_first = true}}) {
+        for (const GrowOptions way : {GrowOptions{.lean_merging_leaves = true}, GrowOptions{.pair_leaves_first = true},
+                                      GrowOptions{.pair_leaves_first = true, .lean_quads = true}}) {
             SupportTree t = grow_tree(q, samples, p, way);
             if (t.stats.dropped <= plain.stats.dropped && t.stats.dropped_branches <= plain.stats.dropped_branches &&
                 seconds(t) < seconds(expected))
@@ -597,6 +643,7 @@ TEST(GrowCheaperTree, KeepsTheWayTheSlicerEstimatePrefersUnlessItDropsMore) {
         const SupportTree kept = grow_cheaper_tree(q, samples, p).tree;
         EXPECT_EQ(kept.grown_with.lean_merging_leaves, expected.grown_with.lean_merging_leaves);
         EXPECT_EQ(kept.grown_with.pair_leaves_first, expected.grown_with.pair_leaves_first);
+        EXPECT_EQ(kept.grown_with.lean_quads, expected.grown_with.lean_quads);
         EXPECT_LE(kept.stats.dropped, plain.stats.dropped);
         EXPECT_LE(seconds(kept), seconds(plain));
         ASSERT_EQ(kept.nodes.size(), expected.nodes.size());
