@@ -301,6 +301,23 @@ std::vector<Vec3> lost_samples(const SupportTree& hung, const SupportTree& grown
     return out;
 }
 
+// The samples where the overhang lies beyond reach of what `held` holds up (top_up_samples), but
+// outside the user's support blockers: a blocked region is left bare on purpose.
+std::vector<Sample> samples_beyond_reach(const Mesh& model, const OverhangOptions& oo, const ModelQuery& q,
+                                         const OverhangSamples& sampled, const std::vector<Vec3>& held,
+                                         const std::vector<Box3>& blockers, const Params& p) {
+    auto more = top_up_samples(model, oo, &q, sampled, held);
+    std::erase_if(more, [&](const Sample& s) { return in_support_blocker(s.p, blockers, p); });
+    return more;
+}
+
+// Topped-up samples join the run's, kept top-down as the sweep takes them.
+void add_topped_up(OverhangSamples& sampled, const std::vector<Sample>& more) {
+    sampled.topped_up += more.size();
+    sampled.samples.insert(sampled.samples.end(), more.begin(), more.end());
+    sort_top_down(sampled.samples);
+}
+
 // Support points (as edited_samples snaps them onto the model) that no leaf or pillar carries in
 // the finished tree: where no strut fits. One warning each, with where it is.
 std::vector<std::string> untipped_support_points(const ModelQuery& q, const SupportTree& t, const ManualEdits& e,
@@ -518,14 +535,10 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     SupportTree hung;
     auto extra = sw.time("coverage top-up", progress, [&] {
         hung = hang_leaves(*query, r.samples.samples, p, blockers);
-        auto more = top_up_samples(r.model, oo, query.get(), r.samples, coverers(hung, r.samples.samples));
-        std::erase_if(more, [&](const Sample& s) { return in_support_blocker(s.p, blockers, p); });
-        return more;
+        return samples_beyond_reach(r.model, oo, *query, r.samples, coverers(hung, r.samples.samples), blockers, p);
     });
     if (!extra.empty()) {
-        r.samples.topped_up = extra.size();
-        r.samples.samples.insert(r.samples.samples.end(), extra.begin(), extra.end());
-        sort_top_down(r.samples.samples);
+        add_topped_up(r.samples, extra);
         hung = hang_more_leaves(*query, std::move(hung), extra, p, blockers);  // the new samples' leaves, in sample order
     }
     // Walls under ceilings low over the bed take the samples they carry; the tree grows from the rest.
@@ -534,28 +547,25 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     // The tree and the columns baseline start from the same leaves (hanging them does not depend
     // on the strategy); the baseline carries every sample.
     SupportTree& leaves = ceilings.walls.empty() ? hung : hung_rest;
-    SizedTree grown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, leaves, p, blockers); });
     // Leaves the sweep lost (no way down, even alone) leave their overhang beyond reach: samples
     // beside them, and the tree grown once more with their leaves (bird and molecule at 120 mm).
-    if (grown.tree.stats.dropped > leaves.stats.dropped) {
-        const auto lost = lost_samples(leaves, grown.tree);
-        auto more = top_up_samples(r.model, oo, query.get(), r.samples, coverers(grown.tree, r.samples.samples, lost));
-        std::erase_if(more, [&](const Sample& s) { return in_support_blocker(s.p, blockers, p); });
-        if (!more.empty()) {
-            SupportTree more_leaves = hang_more_leaves(*query, leaves, more, p, blockers);
-            SizedTree regrown = sw.time("tree", progress, [&] { return grow_cheaper_tree(*query, more_leaves, p, blockers); });
-            // Kept only where it loses no more leaves: with many dead ends (menger_sponge3 with
-            // --buildplate-only) the new leaves crowd the way down and more are lost.
-            if (regrown.tree.stats.dropped <= grown.tree.stats.dropped) {
-                r.samples.topped_up += more.size();
-                r.samples.samples.insert(r.samples.samples.end(), more.begin(), more.end());
-                sort_top_down(r.samples.samples);
-                if (!ceilings.walls.empty()) hung = hang_more_leaves(*query, std::move(hung), std::move(more), p, blockers);
-                leaves = std::move(more_leaves);
-                grown = std::move(regrown);
-            }
-        }
-    }
+    // One stage: the regrowth is part of growing the tree.
+    SizedTree grown = sw.time("tree", progress, [&] {
+        SizedTree first = grow_cheaper_tree(*query, leaves, p, blockers);
+        if (first.tree.stats.dropped <= leaves.stats.dropped) return first;
+        const auto held = coverers(first.tree, r.samples.samples, lost_samples(leaves, first.tree));
+        auto more = samples_beyond_reach(r.model, oo, *query, r.samples, held, blockers, p);
+        if (more.empty()) return first;
+        SupportTree more_leaves = hang_more_leaves(*query, leaves, more, p, blockers);
+        SizedTree regrown = grow_cheaper_tree(*query, more_leaves, p, blockers);
+        // Kept only where it loses no more leaves: with many dead ends (menger_sponge3 with
+        // --buildplate-only) the new leaves crowd the way down and more are lost.
+        if (regrown.tree.stats.dropped > first.tree.stats.dropped) return first;
+        add_topped_up(r.samples, more);
+        if (!ceilings.walls.empty()) hung = hang_more_leaves(*query, std::move(hung), std::move(more), p, blockers);
+        leaves = std::move(more_leaves);
+        return regrown;
+    });
     // The user's omitted struts are numbered in the final tree (the one the .scad shows).
     r.supports = sw.time("struts", progress, [&] {
         return finish_supports(std::move(grown), p, job.edits.omit_struts, std::move(ceilings.walls));
