@@ -481,13 +481,10 @@ class DownSurface {
 public:
     DownSurface(const Mesh& m, double step, const Box3& near) : m_(m), step_(step), faces_(kCell), points_(kCell) {
         for (std::size_t f = 0; f < m.faces.size(); ++f) {
-            const Vec3 &a = m.vertices[m.faces[f][0]], &b = m.vertices[m.faces[f][1]], &c = m.vertices[m.faces[f][2]];
             if (!(face_normal_unnormalized(m, m.faces[f]).z < 0)) continue;
-            const Box3 box{{std::min({a.x, b.x, c.x}), std::min({a.y, b.y, c.y}), std::min({a.z, b.z, c.z})},
-                           {std::max({a.x, b.x, c.x}), std::max({a.y, b.y, c.y}), std::max({a.z, b.z, c.z})}};
-            if (box.max.x < near.min.x || box.min.x > near.max.x || box.max.y < near.min.y || box.min.y > near.max.y ||
-                box.max.z < near.min.z || box.min.z > near.max.z)
-                continue;
+            Box3 box;
+            for (auto v : m.faces[f]) box.add(m.vertices[v]);
+            if (!overlaps(box, near)) continue;
             for (long i = faces_.index(box.min.x); i <= faces_.index(box.max.x); ++i)
                 for (long j = faces_.index(box.min.y); j <= faces_.index(box.max.y); ++j) faces_.insert_at(i, j, f);
         }

@@ -86,6 +86,12 @@ inline bool contains(const Box3& b, const Vec3& p) {
     return p.x >= b.min.x && p.x <= b.max.x && p.y >= b.min.y && p.y <= b.max.y && p.z >= b.min.z && p.z <= b.max.z;
 }
 
+// Do the boxes share a point (touching counts)?
+inline bool overlaps(const Box3& a, const Box3& b) {
+    return a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y && a.min.z <= b.max.z &&
+           b.min.z <= a.max.z;
+}
+
 // The box grown by r on each side horizontally and by rz vertically.
 inline Box3 grown(const Box3& b, double r, double rz) {
     return {b.min - Vec3{r, r, rz}, b.max + Vec3{r, r, rz}};

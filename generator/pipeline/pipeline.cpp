@@ -349,15 +349,11 @@ std::vector<std::string> floating_shells(const Mesh& model, double bed_z, const 
     std::vector<Box3> boxes(count);
     for (size_t f = 0; f < model.faces.size(); ++f)
         for (auto v : model.faces[f]) boxes[comp[f]].add(model.vertices[v]);
-    auto apart = [](const Box3& a, const Box3& b) {
-        return a.max.x < b.min.x || b.max.x < a.min.x || a.max.y < b.min.y || b.max.y < a.min.y || a.max.z < b.min.z ||
-               b.max.z < a.min.z;
-    };
     std::vector<std::string> out;
     for (int i = 0; i < count; ++i) {
         if (boxes[i].min.z <= bed_z) continue;
         bool alone = true;
-        for (int j = 0; j < count && alone; ++j) alone = j == i || apart(boxes[i], boxes[j]);
+        for (int j = 0; j < count && alone; ++j) alone = j == i || !overlaps(boxes[i], boxes[j]);
         if (!alone) continue;
         const Vec3 c = (boxes[i].min + boxes[i].max) * 0.5, size = boxes[i].size();
         out.push_back(fmt::format("{}: a shell of {:.1f} x {:.1f} x {:.1f} mm at ({:.1f}, {:.1f}, {:.1f}) floats {:.1f} mm "
