@@ -12,6 +12,8 @@
 #include <array>
 #include <bit>
 #include <cfloat>
+#include <atomic>
+#include <memory>
 #include <mutex>
 #include <unordered_map>
 #include <vector>
@@ -56,16 +58,37 @@ struct RayParameter {
 // Two indexes of the same triangles: the BVH narrows segment and ray questions down to a few
 // triangles, which CGAL's own predicates and constructions then decide, so the answers are those of
 // CGAL's AABB tree (which still answers distance questions, and rays where two faces tie).
+// The BVH is built only once the model has been asked about a quarter as many segment and ray
+// questions as it has triangles (building costs about as much as that many questions save; a big
+// scan is asked few). Until then CGAL's tree answers them: the answers are the same either way.
 struct ModelQuery::Impl {
+    const Mesh& mesh;  // the indexed mesh, which outlives every query sharing this index
     std::vector<Triangle3> triangles;
     Tree tree;
-    TriangleBvh bvh;
-    explicit Impl(const Mesh& m) : bvh(m) {}
+    explicit Impl(const Mesh& m) : mesh(m) {}
+    // The BVH, or null while too few questions were asked.
+    const TriangleBvh* bvh() const;
     std::optional<RayIntersection> first_intersection(const K::Ray_3& ray) const;
     std::optional<RayIntersection> fallback(const K::Ray_3& ray) const;  // CGAL's tree's answer
     bool segment_hits(const K::Segment_3& segment) const;
     std::vector<const Triangle3*> crossed_faces(const K::Ray_3& ray) const;
+
+private:
+    mutable std::atomic<std::size_t> asked_{0};
+    mutable std::once_flag built_;
+    mutable std::unique_ptr<const TriangleBvh> bvh_;
+    mutable std::atomic<const TriangleBvh*> ready_{nullptr};
 };
+
+const TriangleBvh* ModelQuery::Impl::bvh() const {
+    if (const TriangleBvh* b = ready_.load(std::memory_order_acquire)) return b;
+    if (asked_.fetch_add(1, std::memory_order_relaxed) < triangles.size() / 4) return nullptr;
+    std::call_once(built_, [&] {
+        bvh_ = std::make_unique<const TriangleBvh>(mesh);
+        ready_.store(bvh_.get(), std::memory_order_release);
+    });
+    return ready_.load(std::memory_order_acquire);
+}
 
 // CGAL's first_intersection(ray), found from the BVH's few candidates where the answer is certain.
 // CGAL's answer is not always the nearest hit: it walks its boxes nearest first and stops at a
@@ -77,12 +100,14 @@ struct ModelQuery::Impl {
 // walk reach it before any other hit (CGAL's box entries only shrink up the tree, so every box
 // above it is reached too). Otherwise, and where nothing is certain, CGAL's tree is asked.
 std::optional<RayIntersection> ModelQuery::Impl::first_intersection(const K::Ray_3& ray) const {
-    if (triangles.size() < 2) return fallback(ray);  // CGAL's one-face tree skips its box tests
+    const TriangleBvh* bvh = this->bvh();
+    // Too few questions yet, or a one-face tree (CGAL's skips its box tests): CGAL's tree answers.
+    if (!bvh || triangles.size() < 2) return fallback(ray);
     const RayParameter param(ray);
     const K::Vector_3 v = ray.to_vector();
     std::optional<RayIntersection> nearest;
     double best = DBL_MAX, second = DBL_MAX;
-    bvh.along_line(vec(ray.source()), Vec3{v.x(), v.y(), v.z()}, [&](std::uint32_t f) {
+    bvh->along_line(vec(ray.source()), Vec3{v.x(), v.y(), v.z()}, [&](std::uint32_t f) {
         auto x = K().intersect_3_object()(ray, triangles[f]);
         if (!x) return false;
         const double t = boost::apply_visitor([&](const auto& g) { return param(g); }, *x);
@@ -109,8 +134,10 @@ std::optional<RayIntersection> ModelQuery::Impl::first_intersection(const K::Ray
 // passes more often on a bigger box). A touching face CGAL's box test turns away (a segment along
 // a box's side, where rounding decides) leaves the answer to CGAL's tree; no touching face: false.
 bool ModelQuery::Impl::segment_hits(const K::Segment_3& segment) const {
+    const TriangleBvh* bvh = this->bvh();
+    if (!bvh) return tree.do_intersect(segment);
     bool unsure = false;
-    const bool hit = bvh.along_segment(vec(segment.source()), vec(segment.target()), [&](std::uint32_t f) {
+    const bool hit = bvh->along_segment(vec(segment.source()), vec(segment.target()), [&](std::uint32_t f) {
         if (!K().do_intersect_3_object()(segment, triangles[f])) return false;
         if (K().do_intersect_3_object()(segment, triangles[f].bbox())) return true;
         unsure = true;
@@ -122,9 +149,10 @@ bool ModelQuery::Impl::segment_hits(const K::Segment_3& segment) const {
 // CGAL's tree.all_intersected_primitives(ray), in no particular order, by the same argument.
 std::vector<const Triangle3*> ModelQuery::Impl::crossed_faces(const K::Ray_3& ray) const {
     std::vector<const Triangle3*> crossed;
-    bool unsure = false;
+    const TriangleBvh* bvh = this->bvh();
+    bool unsure = !bvh;
     const K::Vector_3 v = ray.to_vector();
-    bvh.along_ray(vec(ray.source()), Vec3{v.x(), v.y(), v.z()}, [&](std::uint32_t f) {
+    if (bvh) bvh->along_ray(vec(ray.source()), Vec3{v.x(), v.y(), v.z()}, [&](std::uint32_t f) {
         if (!K().do_intersect_3_object()(ray, triangles[f])) return false;
         unsure = unsure || !K().do_intersect_3_object()(ray, triangles[f].bbox());
         crossed.push_back(&triangles[f]);
