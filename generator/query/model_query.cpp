@@ -309,11 +309,8 @@ std::optional<RayHit> ModelQuery::first_hit_in_index(const Vec3& origin, const V
 
 bool ModelQuery::segment_hits(const Vec3& a, const Vec3& b) const {
     if (a == b) return false;
-    return remembered(memo_->mutex, memo_->segments, key(a, b), [&] {
-        const Vec3 from = in_index(a), to = in_index(b);
-        const K::Segment_3 segment(pt(from), pt(to));
-        return impl_->segment_hits(segment);
-    });
+    const Vec3 from = in_index(a), to = in_index(b);
+    return impl_->segment_hits(K::Segment_3(pt(from), pt(to)));
 }
 
 bool ModelQuery::triangle_hits(const Vec3& a, const Vec3& b, const Vec3& c) const {
