@@ -309,8 +309,9 @@ bool rows_along_x(const Region& r, const XyGrid<std::size_t>& grid, const std::v
     return r.box.max.x - r.box.min.x >= r.box.max.y - r.box.min.y;
 }
 
+// The region's walls, rows at most `span` apart.
 RegionWalls region_walls(const ModelQuery& q, const Region& r, const std::vector<Sample>& samples, const Params& p,
-                         double overhang_nz) {
+                         double overhang_nz, double span) {
     XyGrid<std::size_t> grid(p.sampling_distance);
     for (std::size_t i : r.samples) grid.insert(samples[i].p, i);
     const bool along_x = rows_along_x(r, grid, samples, p);
@@ -349,7 +350,7 @@ RegionWalls region_walls(const ModelQuery& q, const Region& r, const std::vector
     } else {
         auto [v_lo, lo_runs] = outer_row(lo_v, -1);
         auto [v_hi, hi_runs] = outer_row(hi_v, 1);
-        const int gaps = static_cast<int>(std::ceil((v_hi - v_lo) / p.ceiling_span - 1e-9));
+        const int gaps = static_cast<int>(std::ceil((v_hi - v_lo) / span - 1e-9));
         const double spacing = (v_hi - v_lo) / gaps;
         for (int j = 0; j <= gaps; ++j) {
             const double v = j == gaps ? v_hi : v_lo + j * spacing;
@@ -457,6 +458,10 @@ std::optional<Vec3> contact_above(const ModelQuery& q, const Vec3& x, const Para
 struct Contacts {
     std::vector<std::pair<Vec3, Vec3>> segments;
     XyGrid<std::size_t> near{1.0};  // by each segment's middle
+    // The walls' length, and how much of it holds the ceiling narrower than along both edges of
+    // its top (short tops, and long ones with an edge held on less than half their length: the
+    // ceiling sloping across them).
+    double length = 0, narrow = 0;
 };
 constexpr double kUnsureTop = 1.02;
 
@@ -472,7 +477,9 @@ Contacts wall_contacts(const ModelQuery& q, const std::vector<CeilingWall>& wall
         const double length = horizontal_distance(a, b);
         const bool is_long = length >= kUnsureTop * std::max(two_reaches, 3 * w.thickness);
         const Vec3 d = (b - a) * (1.0 / length), across = Vec3{-d.y, d.x, 0} * (0.5 * w.thickness);
+        out.length += length;
         if (!is_long) {
+            out.narrow += length;
             if (length >= two_reaches && length >= 3 * w.thickness / kUnsureTop) continue;  // unsure
             // As `check` finds a short top's contact: at its middle, with the model over the corner
             // (or middle) nearest below it, where that is within a gap and a layer.
@@ -485,14 +492,18 @@ Contacts wall_contacts(const ModelQuery& q, const std::vector<CeilingWall>& wall
             continue;
         }
         const int n = static_cast<int>(std::ceil(length / kContactStep));
+        bool edges_held = true;
         for (const Vec3 side : {Vec3{}, across, across * -1.0}) {
             std::optional<Vec3> last;
+            int held = 0;
             for (int k = 0; k <= n; ++k) {
                 const auto c = contact_above(q, a + side + (b - a) * (double(k) / n), p);
-                if (c) add(last ? *last : *c, *c);
+                if (c) add(last ? *last : *c, *c), ++held;
                 last = c;
             }
+            if (side.x != 0 || side.y != 0) edges_held = edges_held && 2 * held >= n + 1;
         }
+        if (!edges_held) out.narrow += length;
     }
     return out;
 }
@@ -673,6 +684,25 @@ bool walls_carry(JudgedSurface& surface, const Contacts& contacts, const Vec3& s
     });
 }
 
+// One way of laying a region's walls: the runs, their flat pieces, the pieces' contacts as `check`
+// finds them, and the region's samples they do not carry.
+struct Layout {
+    RegionWalls w;
+    std::vector<CeilingWall> pieces;
+    Contacts tops;
+    std::vector<Sample> left;
+};
+// Rows this share of twice the walls' reach apart hold the ceiling midway between them where the
+// walls hold it along a narrow line: a staircase down a slope is held at each piece's middle only,
+// the middles up to a piece (a millimetre or so) apart along the row, so a point midway is a little
+// farther from the nearest than half the rows' distance; a ceiling sloping steeply across a row is
+// held along the wall's lower edge only. At the span, rows need long tops held along both edges.
+// Tried where at least half the walls' length is held so narrowly and rows the span apart leave
+// samples to a tree. (Rows
+// along the most level direction between x and y were tried too: on the tuning models' slopes
+// and on tilted planes they left more samples than these, at both distances.)
+constexpr double kTightRows = 0.9;
+
 // Does any wall's solid (its width across, foot to top) overlap one of the boxes?
 bool enters_blocker(const std::vector<Run>& walls, const std::vector<Box3>& blockers, const Params& p) {
     const double half = 0.5 * p.wall_thickness;
@@ -711,29 +741,42 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
     const double margin = 2 * p.sampling_distance + 2 * coverage_reach(p.sampling_distance);
     near.min = near.min - Vec3{margin, margin, margin}, near.max = near.max + Vec3{margin, margin, margin};
     JudgedSurface surface(q.mesh(), kProbeStepOfReach * coverage_reach(p.sampling_distance), near, p.critical_angle);
+    const double tight = std::min(p.ceiling_span, kTightRows * 2 * wall_reach(p));
     for (const Region& r : regions) {
-        RegionWalls w = region_walls(q, r, samples, p, overhang_nz);
-        if (w.walls.empty() || enters_blocker(w.walls, blockers, p)) continue;
-        // The region as a tree, against its walls plus a tree for what they leave (rims, ends).
-        std::vector<CeilingWall> pieces;
-        for (const Run& run : w.walls)
-            for (auto& piece : flat_pieces(run, p)) pieces.push_back(piece);
-        const Contacts own_tops = wall_contacts(q, pieces, p);
-        std::vector<Sample> own, left;
-        for (std::size_t i : r.samples) {
-            own.push_back(samples[i]);
-            if (!walls_carry(surface, own_tops, samples[i].p, p)) left.push_back(samples[i]);
+        // Rows the span apart; where they leave samples to a tree, also `tight` apart (a slope's
+        // staircase of short pieces), keeping the layout that leaves fewer (the first of equals).
+        std::optional<Layout> best;
+        for (double span : {p.ceiling_span, tight}) {
+            if (best && (best->left.empty() || span == p.ceiling_span || best->tops.narrow < 0.5 * best->tops.length)) break;
+            Layout l;
+            l.w = region_walls(q, r, samples, p, overhang_nz, span);
+            if (l.w.walls.empty() || enters_blocker(l.w.walls, blockers, p)) continue;
+            for (const Run& run : l.w.walls)
+                for (auto& piece : flat_pieces(run, p)) l.pieces.push_back(piece);
+            l.tops = wall_contacts(q, l.pieces, p);
+            for (std::size_t i : r.samples)
+                if (!walls_carry(surface, l.tops, samples[i].p, p)) l.left.push_back(samples[i]);
+            if (!best || l.left.size() < best->left.size()) best = std::move(l);
         }
+        if (!best) continue;
+        const RegionWalls& w = best->w;
+        const std::vector<CeilingWall>& pieces = best->pieces;
+        const std::vector<Sample>& left = best->left;
+        std::vector<Sample> own;
+        for (std::size_t i : r.samples) own.push_back(samples[i]);
         // Pricing grows the region's tree twice (for all its samples, and for those the walls
         // leave): the stage's cost. Walls that leave a tree under most of the region only add to it.
         if (left.size() > most_left * own.size()) continue;
-        const TreeCount t = tree_count(own), rest = left.empty() ? TreeCount{} : tree_count(left);
         auto tree_s = [](const SlicerRoute& route, const TreeCount& c) {
             return tree_route_seconds(route, c.island_layers, c.outline_mm, c.hop_mm);
         };
+        const TreeCount t = tree_count(own);
         const double tree_cura = tree_s(kCuraRoute, t), tree_prusa = tree_s(kPrusaRoute, t);
-        const double walls_cura = walls_route_seconds(kCuraRoute, w, p) + tree_s(kCuraRoute, rest);
-        const double walls_prusa = walls_route_seconds(kPrusaRoute, w, p) + tree_s(kPrusaRoute, rest);
+        // Walls that alone cost more than the tree lose whatever the rest costs: its tree is not grown.
+        double walls_cura = walls_route_seconds(kCuraRoute, w, p), walls_prusa = walls_route_seconds(kPrusaRoute, w, p);
+        if (!(walls_cura < tree_cura && walls_prusa < tree_prusa)) continue;
+        const TreeCount rest = left.empty() ? TreeCount{} : tree_count(left);
+        walls_cura += tree_s(kCuraRoute, rest), walls_prusa += tree_s(kPrusaRoute, rest);
         // Either slicer may print it: walls only where both print them faster.
         if (!(walls_cura < tree_cura && walls_prusa < tree_prusa)) continue;
         ++out.regions;

@@ -15,7 +15,9 @@
 //               changes height less, so a sloping or round ceiling gets long flat pieces; else
 //               along the longer side); the outer rows as far out as walls stand along them (a
 //               bore's or tunnel's ceiling goes on past its outer samples), else just inside the
-//               outer samples; each row is cut into walls where the ceiling above it is an overhang of this region all across the
+//               outer samples; where rows the span apart leave samples, also rows 0.9 x twice the
+//               walls' reach apart (a slope's staircase is held at each piece's middle only), the
+//               layout leaving fewer kept; each row is cut into walls where the ceiling above it is an overhang of this region all across the
 //               wall's width plus tip_side_clearance (a wall beside it, or a hole, ends a wall)
 //     floors    the bed, or a level face of the model (a gap above it): walls under a roof over
 //               the model stand on it as pillars do

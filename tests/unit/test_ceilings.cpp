@@ -211,9 +211,7 @@ Mesh tunnel() {
 // them still go to the walls (only what `check` judges must lie within the walls' reach), and
 // `check` finds held all it finds held with a tip at every sample.
 TEST(Ceilings, SamplesBesideSteepSidesThatCheckDoesNotJudgeGoToTheWalls) {
-    Params p;
-    p.ceiling_span = 2.5;
-    Walled w = walled(tunnel(), p);
+    Walled w = walled(tunnel());
     ASSERT_FALSE(w.ceilings.walls.empty());
     const CheckResult judged = check_supports(w.model, Mesh{}, w.p, {});
     double widest = 0;  // the judged overhang's half width across the tunnel
@@ -310,4 +308,17 @@ TEST(CheckWalls, AWallsLongTopIsAContactAlongItsWholeLength) {
     // Raised into the deck's gap it is fused along its length.
     CeilingWall fused{{-7.5, 0, 0}, {7.5, 0, 0}, 0, 8 - 0.05};
     EXPECT_EQ(check_supports(model, wall_mesh(fused), p, {}).fused_contacts, 1u);
+}
+
+// A roof sloping both ways (one to three tenths along x and y): rows along x or y are staircases
+// of short pieces, each held at its middle only, so the rows stand close enough for a point midway
+// between two to be within reach of one; the walls then take nearly every sample, and hold them.
+TEST(Ceilings, ARoofSlopingBothWaysGetsRowsCloseEnoughForItsStaircases) {
+    for (const auto& [gx, gy] : {std::pair{0.1, 0.1}, {0.3, 0.1}, {0.3, 0.3}}) {
+        const Mesh roof = bent_roof([&](double x, double y) { return 1 + gx * x / 3 + gy * y / 3; });
+        Walled w = walled(roof);
+        const std::string what = "slopes " + std::to_string(gx) + ", " + std::to_string(gy);
+        EXPECT_GE(w.ceilings.covered, 0.9 * w.samples.samples.size()) << what;
+        expect_walls_hold_what_they_take(w, what);
+    }
 }
