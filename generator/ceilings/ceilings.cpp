@@ -309,19 +309,29 @@ bool rows_along_x(const Region& r, const XyGrid<std::size_t>& grid, const std::v
     return r.box.max.x - r.box.min.x >= r.box.max.y - r.box.min.y;
 }
 
-// The region's walls, rows at most `span` apart.
-RegionWalls region_walls(const ModelQuery& q, const Region& r, const std::vector<Sample>& samples, const Params& p,
-                         double overhang_nz, double span) {
+// Where a region's rows run (rows_along_x), and its outer rows, which do not depend on the span:
+// as far out as walls stand along them (as long as a row just inside the outer samples would):
+// where the ceiling goes on past the outer samples (a bore's or tunnel's sides beyond the last
+// lattice row) the walls then reach what those samples cover. Where the outer samples lie on the
+// rim, the rows stand just inside them (a wall's half width, its side clearance and half a
+// station: nothing is above a wall centred on a rim). A region narrower than that gets one row
+// down its middle.
+struct RowPlan {
+    XyGrid<std::size_t> grid;  // the region's samples
+    Frame f;
+    double u0, u1;             // where rows start and end
+    double v_lo, v_hi;         // the outer rows (equal: one row)
+    std::vector<Run> lo_runs, hi_runs;
+    bool moved = false;        // an outer row stands beyond the outer samples
+    double mid = 0, across = 0;  // the rows' middle and the outer rows' distance
+};
+
+RowPlan plan_rows(const ModelQuery& q, const Region& r, const std::vector<Sample>& samples, const Params& p,
+                  double overhang_nz) {
     XyGrid<std::size_t> grid(p.sampling_distance);
     for (std::size_t i : r.samples) grid.insert(samples[i].p, i);
     const bool along_x = rows_along_x(r, grid, samples, p);
     const Frame f{along_x};
-    // The outer rows as far out as walls stand along them (as long as a row just inside the outer
-    // samples would): where the ceiling goes on past the outer samples (a bore's or tunnel's sides
-    // beyond the last lattice row) the walls then reach what those samples cover. Where the outer
-    // samples lie on the rim, the rows stand just inside them (a wall's half width, its side
-    // clearance and half a station: nothing is above a wall centred on a rim). As few rows
-    // between as keep them at most the span apart.
     const double inset = 0.5 * p.wall_thickness + tip_side_clearance(p) + 0.5 * kStation;
     const double u0 = coord(r.box.min, along_x) - p.sampling_distance, u1 = coord(r.box.max, along_x) + p.sampling_distance;
     auto row_length = [](const std::vector<Run>& runs) {
@@ -342,20 +352,42 @@ RegionWalls region_walls(const ModelQuery& q, const Region& r, const std::vector
         return std::pair{inner, best};
     };
     const double lo_v = coord(r.box.min, !along_x), hi_v = coord(r.box.max, !along_x);
+    if (hi_v - lo_v - 2 * inset <= 0) {
+        const double v = 0.5 * (lo_v + hi_v);
+        auto runs = walls_along(q, grid, samples, f, v, u0, u1, p, overhang_nz);
+        return {std::move(grid), f, u0, u1, v, v, runs, runs, false, v, 0};
+    }
+    auto [v_lo, lo_runs] = outer_row(lo_v, -1);
+    auto [v_hi, hi_runs] = outer_row(hi_v, 1);
+    const bool moved = v_lo != lo_v + inset || v_hi != hi_v - inset;
+    const double mid = moved ? 0.5 * (v_lo + v_hi) : 0.5 * (lo_v + hi_v);
+    const double across = moved ? v_hi - v_lo : hi_v - lo_v - 2 * inset;
+    return {std::move(grid), f, u0, u1, v_lo, v_hi, std::move(lo_runs), std::move(hi_runs), moved, mid, across};
+}
+
+// The region's walls: its planned outer rows, as few rows between as keep them at most `span`
+// apart, and the joins.
+RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::vector<Sample>& samples, const Params& p,
+                         double overhang_nz, double span) {
+    const XyGrid<std::size_t>& grid = plan.grid;
+    const Frame& f = plan.f;
+    const bool along_x = f.along_x;
     std::vector<std::vector<Run>> by_row;
     std::vector<double> row_v;
-    if (hi_v - lo_v - 2 * inset <= 0) {
-        row_v.push_back(0.5 * (lo_v + hi_v));
-        by_row.push_back(walls_along(q, grid, samples, f, row_v.back(), u0, u1, p, overhang_nz));
+    if (plan.v_hi == plan.v_lo) {
+        row_v.push_back(plan.v_lo);
+        by_row.push_back(plan.lo_runs);
     } else {
-        auto [v_lo, lo_runs] = outer_row(lo_v, -1);
-        auto [v_hi, hi_runs] = outer_row(hi_v, 1);
-        const int gaps = static_cast<int>(std::ceil((v_hi - v_lo) / span - 1e-9));
-        const double spacing = (v_hi - v_lo) / gaps;
+        // Spaced from the middle out (the outer rows' own walls where they stand beyond the
+        // outer samples).
+        const int gaps = static_cast<int>(std::ceil(plan.across / span - 1e-9));
+        const double spacing = plan.across / gaps, mid = plan.mid;
         for (int j = 0; j <= gaps; ++j) {
-            const double v = j == gaps ? v_hi : v_lo + j * spacing;
+            const double v = plan.moved && j == 0 ? plan.v_lo : plan.moved && j == gaps ? plan.v_hi : mid + (j - 0.5 * gaps) * spacing;
             row_v.push_back(v);
-            by_row.push_back(j == 0 ? lo_runs : j == gaps ? hi_runs : walls_along(q, grid, samples, f, v, u0, u1, p, overhang_nz));
+            by_row.push_back(plan.moved && j == 0      ? plan.lo_runs
+                             : plan.moved && j == gaps ? plan.hi_runs
+                                                       : walls_along(q, grid, samples, f, v, plan.u0, plan.u1, p, overhang_nz));
         }
     }
     RegionWalls out;
@@ -745,11 +777,12 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
     for (const Region& r : regions) {
         // Rows the span apart; where they leave samples to a tree, also `tight` apart (a slope's
         // staircase of short pieces), keeping the layout that leaves fewer (the first of equals).
+        const RowPlan plan = plan_rows(q, r, samples, p, overhang_nz);
         std::optional<Layout> best;
         for (double span : {p.ceiling_span, tight}) {
             if (best && (best->left.empty() || span == p.ceiling_span || best->tops.narrow < 0.5 * best->tops.length)) break;
             Layout l;
-            l.w = region_walls(q, r, samples, p, overhang_nz, span);
+            l.w = region_walls(q, plan, samples, p, overhang_nz, span);
             if (l.w.walls.empty() || enters_blocker(l.w.walls, blockers, p)) continue;
             for (const Run& run : l.w.walls)
                 for (auto& piece : flat_pieces(run, p)) l.pieces.push_back(piece);
