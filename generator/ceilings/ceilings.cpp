@@ -723,6 +723,7 @@ struct Layout {
     std::vector<CeilingWall> pieces;
     Contacts tops;
     std::vector<Sample> left;
+    std::vector<std::size_t> carried;  // indices of the region's samples they carry
 };
 // Rows this share of twice the walls' reach apart hold the ceiling midway between them where the
 // walls hold it along a narrow line: a staircase down a slope is held at each piece's middle only,
@@ -774,6 +775,8 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
     near.min = near.min - Vec3{margin, margin, margin}, near.max = near.max + Vec3{margin, margin, margin};
     JudgedSurface surface(q.mesh(), kProbeStepOfReach * coverage_reach(p.sampling_distance), near, p.critical_angle);
     const double tight = std::min(p.ceiling_span, kTightRows * 2 * wall_reach(p));
+    // What the chosen regions' own walls carry: more walls only add contacts, so those stay carried.
+    std::vector<char> carried(samples.size(), 0);
     for (const Region& r : regions) {
         // Rows the span apart; where they leave samples to a tree, also `tight` apart (a slope's
         // staircase of short pieces), keeping the layout that leaves fewer (the first of equals).
@@ -788,7 +791,8 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
                 for (auto& piece : flat_pieces(run, p)) l.pieces.push_back(piece);
             l.tops = wall_contacts(q, l.pieces, p);
             for (std::size_t i : r.samples)
-                if (!walls_carry(surface, l.tops, samples[i].p, p)) l.left.push_back(samples[i]);
+                if (walls_carry(surface, l.tops, samples[i].p, p)) l.carried.push_back(i);
+                else l.left.push_back(samples[i]);
             if (!best || l.left.size() < best->left.size()) best = std::move(l);
         }
         if (!best) continue;
@@ -816,15 +820,16 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         out.tree_cura_s += tree_cura, out.tree_prusa_s += tree_prusa;
         out.walls_cura_s += walls_cura, out.walls_prusa_s += walls_prusa;
         out.walls.insert(out.walls.end(), pieces.begin(), pieces.end());
+        for (std::size_t i : best->carried) carried[i] = 1;
     }
     if (out.walls.empty()) {
         out.rest = samples;
         return out;
     }
     const Contacts tops = wall_contacts(q, out.walls, p);
-    for (const Sample& s : samples) {
-        if (walls_carry(surface, tops, s.p, p)) ++out.covered;
-        else out.rest.push_back(s);
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        if (carried[i] || walls_carry(surface, tops, samples[i].p, p)) ++out.covered;
+        else out.rest.push_back(samples[i]);
     }
     return out;
 }
