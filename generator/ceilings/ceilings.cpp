@@ -339,17 +339,20 @@ RowPlan plan_rows(const ModelQuery& q, const Region& r, const std::vector<Sample
         for (const Run& w : runs) l += horizontal_distance(w.top.front(), w.top.back());
         return l;
     };
-    // The outer row on one side (`out` -1: low v, +1: high v), and its walls.
+    // The outer row on one side (`out` -1: low v, +1: high v), and its walls: stepped out a station
+    // at a time from just inside the outer samples while the row stays as long, at most the walls'
+    // reach and the inset past them.
     auto outer_row = [&](double sample_v, double out) {
-        const double inner = sample_v - out * inset;
-        std::vector<Run> best = walls_along(q, grid, samples, f, inner, u0, u1, p, overhang_nz);
+        double v = sample_v - out * inset;
+        std::vector<Run> best = walls_along(q, grid, samples, f, v, u0, u1, p, overhang_nz);
         const double need = row_length(best);
         const int steps = static_cast<int>(std::floor((wall_reach(p) + inset) / kStation));
-        for (int k = steps; k > 0 && need > 0; --k) {
-            auto runs = walls_along(q, grid, samples, f, inner + out * k * kStation, u0, u1, p, overhang_nz);
-            if (row_length(runs) >= need) return std::pair{inner + out * k * kStation, runs};
+        for (int k = 1; k <= steps && need > 0; ++k) {
+            auto runs = walls_along(q, grid, samples, f, sample_v - out * inset + out * k * kStation, u0, u1, p, overhang_nz);
+            if (row_length(runs) < need) break;
+            v = sample_v - out * inset + out * k * kStation, best = std::move(runs);
         }
-        return std::pair{inner, best};
+        return std::pair{v, best};
     };
     const double lo_v = coord(r.box.min, !along_x), hi_v = coord(r.box.max, !along_x);
     if (hi_v - lo_v - 2 * inset <= 0) {
