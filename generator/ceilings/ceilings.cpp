@@ -545,13 +545,20 @@ Contacts wall_contacts(const ModelQuery& q, const std::vector<CeilingWall>& wall
 
 // Is x within `reach` of a contact of the walls, on the same stretch of surface (overhang.hpp's
 // `covers`, the sampling's own rule)?
-bool near_contact(const Contacts& c, const Vec3& x, double reach, const Params& p) {
-    const long rings = static_cast<long>(std::ceil((reach + kContactStep) / c.near.cell()));
-    return c.near.visit_near(x, rings, [&](std::size_t i) {
+// `hint`: a segment to ask first (the one that covered a point nearby), updated to the one found.
+bool near_contact(const Contacts& c, const Vec3& x, double reach, const Params& p, std::size_t* hint = nullptr) {
+    auto covered_by = [&](std::size_t i) {
         const auto& [a, b] = c.segments[i];
         const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
         const double t = l2 > 0 ? std::clamp(((x.x - a.x) * dx + (x.y - a.y) * dy) / l2, 0.0, 1.0) : 0.0;
         return covers(a + (b - a) * t, x, reach, p.critical_angle);
+    };
+    if (hint && *hint < c.segments.size() && covered_by(*hint)) return true;
+    const long rings = static_cast<long>(std::ceil((reach + kContactStep) / c.near.cell()));
+    return c.near.visit_near(x, rings, [&](std::size_t i) {
+        if (!covered_by(i)) return false;
+        if (hint) *hint = i;
+        return true;
     });
 }
 
@@ -713,9 +720,10 @@ private:
 bool walls_carry(JudgedSurface& surface, const Contacts& contacts, const Vec3& s, const Params& p) {
     const double reach = wall_reach(p), r = coverage_reach(p.sampling_distance);
     const double disc = r + kProbeCover * kProbeStepOfReach * r;  // every point within r has a probe in it
-    if (!near_contact(contacts, s, reach, p)) return false;
+    std::size_t hint = contacts.segments.size();  // the probes come in runs of neighbours
+    if (!near_contact(contacts, s, reach, p, &hint)) return false;
     return !surface.visit_near(s, disc, [&](const Vec3& x) {
-        return covers(s, x, disc, p.critical_angle) && !near_contact(contacts, x, reach, p);
+        return covers(s, x, disc, p.critical_angle) && !near_contact(contacts, x, reach, p, &hint);
     });
 }
 
