@@ -1,4 +1,5 @@
 #include "ceilings/ceilings.hpp"
+#include "ceilings/hybrid.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -51,6 +52,7 @@ constexpr double kLevelFloor = 0.95;
 // Where a wall under x may stand: the bed (0), or a level face of the model a gap below... the
 // floor's height; nothing where the fall lands on a slope or less than a wall's room is left.
 std::optional<double> floor_under(const ModelQuery& q, const Vec3& x, const Params& p) {
+    if (p.hybrid_height > 0) return hybrid_floor(q, x, p);  // the hybrid's feet hang on the tree
     auto hit = q.first_hit(x - Vec3{0, 0, 1e-3}, {0, 0, -1});
     if (!hit) return 0.0;
     if (!p.supports_on_model) return std::nullopt;  // --buildplate-only: the bed or nothing
@@ -156,8 +158,9 @@ std::optional<std::pair<double, double>> station_of(const ModelQuery& q, const X
         lowest = std::min(lowest, *z);
         floor_lo = std::min(floor_lo, *floor), floor_hi = std::max(floor_hi, *floor);
     }
-    if (floor_hi - floor_lo > p.layer_height) return std::nullopt;
     const double top = lowest - p.gap;
+    if (p.hybrid_height > 0) return std::pair{top - p.hybrid_height, top};  // the foot follows the top
+    if (floor_hi - floor_lo > p.layer_height) return std::nullopt;
     if (top - floor_hi < touching_space(p)) return std::nullopt;
     return std::pair{floor_hi, top};
 }
@@ -569,12 +572,28 @@ bool enters_blocker(const std::vector<Run>& walls, const std::vector<Box3>& bloc
 
 }  // namespace
 
-Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
-                          const TreeCounter& tree_count, const std::vector<Box3>& blockers, double most_left) {
-    Ceilings out;
+bool ceilings_laid_out(const Params& p) {
     // Rows farther apart than twice the walls' reach (and a wall) carry nothing between them.
     const bool rows_reach = p.ceiling_span <= 2 * wall_reach(p) + p.wall_thickness;
-    if (p.ceiling_span <= 0 || !rows_reach || p.strategy != Strategy::tree) {
+    return p.ceiling_span > 0 && rows_reach && p.strategy == Strategy::tree;
+}
+
+Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
+                          const TreeCounter& tree_count, const std::vector<Box3>& blockers, double most_left) {
+    Params walls = p;
+    walls.hybrid_height = 0;  // walls stand on the bed or a floor (the hybrid: support_hybrid)
+    return lay_out_ceilings(q, samples, walls, [](std::vector<CeilingWall> pieces) { return pieces; },
+                            [&](const std::vector<Sample>& s, const std::vector<CeilingWall>&) {
+                                return s.empty() ? TreeCount{} : tree_count(s);
+                            },
+                            blockers, most_left);
+}
+
+Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
+                          const PiecesRule& finish, const PiecesTreeCounter& tree_count, const std::vector<Box3>& blockers,
+                          double most_left) {
+    Ceilings out;
+    if (!ceilings_laid_out(p)) {
         out.rest = samples;
         return out;
     }
@@ -600,6 +619,8 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         std::vector<CeilingWall> pieces;
         for (const Run& run : w.walls)
             for (auto& piece : flat_pieces(run, p)) pieces.push_back(piece);
+        pieces = finish(std::move(pieces));
+        if (pieces.empty()) continue;
         const Contacts own_tops = wall_contacts(q, pieces, p);
         std::vector<Sample> own, left;
         for (std::size_t i : r.samples) {
@@ -609,7 +630,7 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         // Pricing grows the region's tree twice (for all its samples, and for those the walls
         // leave): the stage's cost. Walls that leave a tree under most of the region only add to it.
         if (left.size() > most_left * own.size()) continue;
-        const TreeCount t = tree_count(own), rest = left.empty() ? TreeCount{} : tree_count(left);
+        const TreeCount t = tree_count(own, {}), rest = tree_count(left, pieces);
         auto tree_s = [](const SlicerRoute& route, const TreeCount& c) {
             return tree_route_seconds(route, c.island_layers, c.outline_mm, c.hop_mm);
         };

@@ -50,6 +50,10 @@ struct Params {
     // every point between two rows is within check's lattice reach of one. Every preset turns
     // them off (params.cpp): on the validation set they cost Cura minutes (README).
     double ceiling_span = 3.4;
+    // The hybrid (ceilings/hybrid.hpp): under ceilings where walls cannot stand on the bed or a
+    // level floor, short walls this tall (mm) hang under the ceiling, their feet carried by the
+    // tree; 0: off (the default everywhere: not yet measured to gain).
+    double hybrid_height = 0;
     // Holes and slots the print bridges (every point of their overhang within reach of an inside
     // corner, a wall going down from it) get no support unless this is true (overhang.hpp).
     bool support_bridges = false;
