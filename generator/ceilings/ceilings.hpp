@@ -60,6 +60,7 @@ struct CeilingWall {
     double bottom = 0, top = 0;
     bool join = false;  // joins two rows (it ends inside the rows it joins)
     double thickness = 0.5;
+    bool on_tree = false;  // the hybrid's (ceilings/hybrid.hpp): its foot stands on a tip of the tree
 };
 
 // What a tree grown from some samples alone would give a slicer to print, counted as

@@ -38,6 +38,7 @@ std::vector<CeilingWall> cut_at_feet(const ModelQuery& q, const std::vector<Ceil
             CeilingWall c = w;
             c.from = w.from + (w.to - w.from) * (double(k) / n);
             c.to = w.from + (w.to - w.from) * (double(k + 1) / n);
+            c.on_tree = true;
             if (tip_fits(q, feet_of({c}).front(), p)) out.push_back(c);
         }
     }
