@@ -1,4 +1,5 @@
 #include "query/model_query.hpp"
+#include "query/triangle_bvh.hpp"
 
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -10,6 +11,9 @@
 #include <boost/iterator/function_output_iterator.hpp>
 #include <array>
 #include <bit>
+#include <cfloat>
+#include <atomic>
+#include <memory>
 #include <mutex>
 #include <unordered_map>
 #include <vector>
@@ -30,10 +34,145 @@ Vec3 vec(const Point& p) { return {p.x(), p.y(), p.z()}; }
 
 }  // namespace
 
+namespace {
+
+using RayIntersection = std::pair<decltype(CGAL::intersection(std::declval<K::Ray_3>(), std::declval<Triangle3>()))::value_type,
+                                  std::size_t>;
+
+// The ray's parameter at a hit as CGAL's first_intersection measures it (along the ray vector's
+// largest coordinate; a segment's nearer end).
+struct RayParameter {
+    const K::Ray_3& ray;
+    int axis = 0;
+    explicit RayParameter(const K::Ray_3& r) : ray(r) {
+        const K::Vector_3 v = r.to_vector();
+        for (int i = 1; i < 3; ++i)
+            if (std::abs(v[i]) > std::abs(v[axis])) axis = i;
+    }
+    double operator()(const Point& p) const { return K::Vector_3(ray.source(), p)[axis] / ray.to_vector()[axis]; }
+    double operator()(const K::Segment_3& s) const { return std::min((*this)(s[0]), (*this)(s[1])); }
+};
+
+}  // namespace
+
+// Two indexes of the same triangles: the BVH narrows segment and ray questions down to a few
+// triangles, which CGAL's own predicates and constructions then decide, so the answers are those of
+// CGAL's AABB tree (which still answers distance questions, and rays where two faces tie).
+// The BVH is built only once the model has been asked about a quarter as many segment and ray
+// questions as it has triangles (building costs about as much as that many questions save; a big
+// scan is asked few). Until then CGAL's tree answers them: the answers are the same either way.
 struct ModelQuery::Impl {
+    const Mesh& mesh;  // the indexed mesh, which outlives every query sharing this index
     std::vector<Triangle3> triangles;
     Tree tree;
+    explicit Impl(const Mesh& m) : mesh(m) {}
+    // The BVH, or null while too few questions were asked.
+    const TriangleBvh* bvh() const;
+    std::optional<RayIntersection> first_intersection(const K::Ray_3& ray) const;
+    std::optional<RayIntersection> fallback(const K::Ray_3& ray) const;  // CGAL's tree's answer
+    bool segment_hits(const K::Segment_3& segment) const;
+    std::vector<const Triangle3*> crossed_faces(const K::Ray_3& ray) const;
+
+private:
+    mutable std::atomic<std::size_t> asked_{0};
+    mutable std::once_flag built_;
+    mutable std::unique_ptr<const TriangleBvh> bvh_;
+    mutable std::atomic<const TriangleBvh*> ready_{nullptr};
 };
+
+const TriangleBvh* ModelQuery::Impl::bvh() const {
+    if (const TriangleBvh* b = ready_.load(std::memory_order_acquire)) return b;
+    if (asked_.fetch_add(1, std::memory_order_relaxed) < triangles.size() / 4) return nullptr;
+    std::call_once(built_, [&] {
+        bvh_ = std::make_unique<const TriangleBvh>(mesh);
+        ready_.store(bvh_.get(), std::memory_order_release);
+    });
+    return ready_.load(std::memory_order_acquire);
+}
+
+// CGAL's first_intersection(ray), found from the BVH's few candidates where the answer is certain.
+// CGAL's answer is not always the nearest hit: it walks its boxes nearest first and stops at a
+// box whose rounded entry is not below the best hit so far (so of two hits within rounding either
+// may win), and on a ray lying in a face's plane its intersection may report an overlap behind
+// the ray's start, which it meets only where its tree pairs that face with one the ray crosses.
+// Every face whose box the ray's whole line touches is intersected here as CGAL does it; the
+// nearest is CGAL's answer when it is strictly nearer than any other and its own box lets CGAL's
+// walk reach it before any other hit (CGAL's box entries only shrink up the tree, so every box
+// above it is reached too). Otherwise, and where nothing is certain, CGAL's tree is asked.
+std::optional<RayIntersection> ModelQuery::Impl::first_intersection(const K::Ray_3& ray) const {
+    const TriangleBvh* bvh = this->bvh();
+    // Too few questions yet, or a one-face tree (CGAL's skips its box tests): CGAL's tree answers.
+    if (!bvh || triangles.size() < 2) return fallback(ray);
+    const RayParameter param(ray);
+    const K::Vector_3 v = ray.to_vector();
+    std::optional<RayIntersection> nearest;
+    double best = DBL_MAX, second = DBL_MAX;
+    bvh->along_line(vec(ray.source()), Vec3{v.x(), v.y(), v.z()}, [&](std::uint32_t f) {
+        auto x = K().intersect_3_object()(ray, triangles[f]);
+        if (!x) return false;
+        const double t = boost::apply_visitor([&](const auto& g) { return param(g); }, *x);
+        if (t < best) {
+            second = best, best = t;
+            nearest.emplace(*x, f);
+        } else if (t < second) {
+            second = t;
+        }
+        return false;
+    });
+    if (!nearest) return std::nullopt;
+    // CGAL first checks the root box, then walks boxes by their entry along the ray.
+    if (!K().do_intersect_3_object()(ray, tree.bbox())) return std::nullopt;
+    if (!(best < second)) return fallback(ray);
+    const auto entry = tree.traits().intersection_distance_object()(ray, triangles[nearest->second].bbox());
+    if (!entry || !(*entry < second)) return fallback(ray);
+    return nearest;
+}
+
+// CGAL's tree.do_intersect(segment): the tree tests do_intersect(segment, triangle) on the faces
+// whose boxes it lets through, so a face the BVH offers that touches is its answer too when CGAL's
+// own test lets the face's box through (it then lets through every box above it: its test only
+// passes more often on a bigger box). A touching face CGAL's box test turns away (a segment along
+// a box's side, where rounding decides) leaves the answer to CGAL's tree; no touching face: false.
+bool ModelQuery::Impl::segment_hits(const K::Segment_3& segment) const {
+    const TriangleBvh* bvh = this->bvh();
+    if (!bvh) return tree.do_intersect(segment);
+    bool unsure = false;
+    const bool hit = bvh->along_segment(vec(segment.source()), vec(segment.target()), [&](std::uint32_t f) {
+        if (!K().do_intersect_3_object()(segment, triangles[f])) return false;
+        if (K().do_intersect_3_object()(segment, triangles[f].bbox())) return true;
+        unsure = true;
+        return false;
+    });
+    return hit || (unsure && tree.do_intersect(segment));
+}
+
+// CGAL's tree.all_intersected_primitives(ray), in no particular order, by the same argument.
+std::vector<const Triangle3*> ModelQuery::Impl::crossed_faces(const K::Ray_3& ray) const {
+    std::vector<const Triangle3*> crossed;
+    const TriangleBvh* bvh = this->bvh();
+    bool unsure = !bvh;
+    const K::Vector_3 v = ray.to_vector();
+    if (bvh) bvh->along_ray(vec(ray.source()), Vec3{v.x(), v.y(), v.z()}, [&](std::uint32_t f) {
+        if (!K().do_intersect_3_object()(ray, triangles[f])) return false;
+        unsure = unsure || !K().do_intersect_3_object()(ray, triangles[f].bbox());
+        crossed.push_back(&triangles[f]);
+        return false;
+    });
+    if (unsure) {
+        std::vector<Tree::Primitive_id> ids;
+        tree.all_intersected_primitives(ray, std::back_inserter(ids));
+        crossed.clear();
+        for (auto id : ids) crossed.push_back(&*id);
+    }
+    return crossed;
+}
+
+std::optional<RayIntersection> ModelQuery::Impl::fallback(const K::Ray_3& ray) const {
+    auto hit = tree.first_intersection(ray);
+    if (!hit) return std::nullopt;
+    return RayIntersection{hit->first, static_cast<std::size_t>(hit->second - triangles.begin())};
+}
+
 
 namespace {
 
@@ -95,7 +234,7 @@ struct ModelQuery::Memo {
 };
 
 ModelQuery::ModelQuery(const Mesh& model) : model_(model), memo_(std::make_unique<Memo>()) {
-    auto impl = std::make_shared<Impl>();
+    auto impl = std::make_shared<Impl>(model);
     impl->triangles.reserve(model.faces.size());
     for (const auto& f : model.faces)
         impl->triangles.emplace_back(pt(model.vertices[f[0]]), pt(model.vertices[f[1]]), pt(model.vertices[f[2]]));
@@ -152,28 +291,28 @@ std::optional<RayHit> ModelQuery::first_hit_uncached(const Vec3& origin, const V
 }
 
 std::optional<RayHit> ModelQuery::first_hit_in_index(const Vec3& origin, const Vec3& dir) const {
-    K::Ray_3 ray(pt(origin), K::Vector_3(dir.x, dir.y, dir.z));
-    auto hit = impl_->tree.first_intersection(ray);
-    if (!hit) return std::nullopt;
-    const Point* p = boost::get<Point>(&hit->first);
+    const K::Ray_3 ray(pt(origin), K::Vector_3(dir.x, dir.y, dir.z));
+    const auto where = impl_->first_intersection(ray);
+    if (!where) return std::nullopt;
     Vec3 q;
-    if (p) {
+    if (const Point* p = boost::get<Point>(&where->first)) {
         q = vec(*p);
-    } else if (const auto* s = boost::get<K::Segment_3>(&hit->first)) {
+    } else if (const auto* s = boost::get<K::Segment_3>(&where->first)) {
         // Ray runs along a triangle: the nearer end of the overlap is the hit.
         Vec3 a = vec(s->source()), b = vec(s->target());
         q = distance(a, origin) < distance(b, origin) ? a : b;
     } else {
         return std::nullopt;
     }
-    auto face = static_cast<std::size_t>(hit->second - impl_->triangles.begin());
-    return RayHit{q, distance(q, origin), face};
+    return RayHit{q, distance(q, origin), where->second};
 }
 
 bool ModelQuery::segment_hits(const Vec3& a, const Vec3& b) const {
     if (a == b) return false;
     return remembered(memo_->mutex, memo_->segments, key(a, b), [&] {
-        return impl_->tree.do_intersect(K::Segment_3(pt(in_index(a)), pt(in_index(b))));
+        const Vec3 from = in_index(a), to = in_index(b);
+        const K::Segment_3 segment(pt(from), pt(to));
+        return impl_->segment_hits(segment);
     });
 }
 
@@ -211,14 +350,12 @@ bool ModelQuery::inside_uncached(const Vec3& p) const {
     // Two rays that agree decide the majority: the third is cast only when they differ (a third
     // of the work on most points; the answer is the same).
     int votes = 0;
-    std::vector<Tree::Primitive_id> hits;
     for (int r = 0; r < 3; ++r) {
         const auto& d = dirs[r];
-        hits.clear();
-        impl_->tree.all_intersected_primitives(K::Ray_3(from, d), std::back_inserter(hits));
+        const K::Ray_3 ray(from, d);
         int winding = 0;
-        for (auto id : hits) {
-            double s = CGAL::scalar_product(id->supporting_plane().orthogonal_vector(), d);
+        for (const Triangle3* t : impl_->crossed_faces(ray)) {
+            double s = CGAL::scalar_product(t->supporting_plane().orthogonal_vector(), d);
             winding += s > 0 ? 1 : (s < 0 ? -1 : 0);
         }
         votes += winding > 0;

@@ -1,0 +1,115 @@
+// A bounding-volume hierarchy over a mesh's triangles that only narrows a question down to the
+// triangles that may touch it; the caller decides each one exactly (ModelQuery does so with CGAL's
+// own predicates, so its answers stay those of CGAL's AABB tree while far fewer triangles and boxes
+// are visited: the tree's questions were most of a big model's generation time).
+//
+// Conservative by construction: every box is widened by a relative 1e-9 beyond its triangles, far
+// more than the rounding of the box tests here, so a triangle that touches a segment or ray is
+// always offered (a few that miss by a hair are offered too, and rejected by the exact test).
+// Immutable once built: one BVH may be searched from many threads at once.
+//
+// Example:
+//   TriangleBvh bvh(mesh);
+//   bool hit = false;
+//   bvh.along_segment(a, b, [&](std::uint32_t face) { return hit = exact_test(face, a, b); });
+// (visit returns true to stop the search.)
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/geometry.hpp"
+
+namespace cs {
+
+class TriangleBvh {
+public:
+    explicit TriangleBvh(const Mesh& mesh);
+
+    // Calls visit(face) for every face whose box the closed segment a-b may touch, until visit
+    // returns true (stop). Returns whether it was stopped.
+    template <typename Visit>
+    bool along_segment(const Vec3& a, const Vec3& b, Visit&& visit) const;
+
+    // The same for the ray origin + s * dir (s >= 0), and for the whole line (any s).
+    template <typename Visit>
+    bool along_ray(const Vec3& origin, const Vec3& dir, Visit&& visit) const {
+        return along(origin, dir, 0, INFINITY, visit);
+    }
+    template <typename Visit>
+    bool along_line(const Vec3& origin, const Vec3& dir, Visit&& visit) const {
+        return along(origin, dir, -INFINITY, INFINITY, visit);
+    }
+
+    std::size_t size() const { return faces_.size(); }
+
+private:
+    struct Box {
+        double lo[3], hi[3];
+    };
+    struct Node {
+        Box box;
+        std::uint32_t first = 0;  // inner node: index of the second child (the first is next); leaf: first slot
+        std::uint32_t count = 0;  // 0: inner node; else the leaf's faces_[first, first + count)
+    };
+    std::vector<Node> nodes_;
+    std::vector<std::uint32_t> faces_;  // face ids in leaf order
+    std::vector<Box> boxes_;            // each slot's face box (widened), in leaf order
+
+    // Parameter interval [t0, t1] of origin + t * dir inside the box, clipped to [lo, hi]; false if empty.
+    template <typename Visit>
+    bool along(const Vec3& o, const Vec3& d, double from, double to, Visit& visit) const;
+    static bool clip(const Box& b, const Vec3& o, const Vec3& d, const Vec3& inv, double& lo, double& hi);
+};
+
+inline bool TriangleBvh::clip(const Box& b, const Vec3& o, const Vec3& d, const Vec3& inv, double& lo, double& hi) {
+    const double oc[3] = {o.x, o.y, o.z}, dc[3] = {d.x, d.y, d.z}, ic[3] = {inv.x, inv.y, inv.z};
+    for (int k = 0; k < 3; ++k) {
+        if (dc[k] == 0) {
+            if (oc[k] < b.lo[k] || oc[k] > b.hi[k]) return false;
+            continue;
+        }
+        double t0 = (b.lo[k] - oc[k]) * ic[k], t1 = (b.hi[k] - oc[k]) * ic[k];
+        if (t0 > t1) std::swap(t0, t1);
+        // A relative hair beyond the rounding of the two products above.
+        t0 -= 1e-12 * (1 + std::abs(t0));
+        t1 += 1e-12 * (1 + std::abs(t1));
+        if (t0 > lo) lo = t0;
+        if (t1 < hi) hi = t1;
+        if (lo > hi) return false;
+    }
+    return true;
+}
+
+template <typename Visit>
+bool TriangleBvh::along_segment(const Vec3& a, const Vec3& b, Visit&& visit) const {
+    return along(a, b - a, 0, 1, visit);
+}
+
+template <typename Visit>
+bool TriangleBvh::along(const Vec3& o, const Vec3& d, double from, double to, Visit& visit) const {
+    if (nodes_.empty()) return false;
+    const Vec3 inv{1 / d.x, 1 / d.y, 1 / d.z};
+    std::uint32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const std::uint32_t at = stack[--top];
+        const Node& n = nodes_[at];
+        double lo = from, hi = to;
+        if (!clip(n.box, o, d, inv, lo, hi)) continue;
+        if (n.count == 0) {
+            stack[top++] = n.first;
+            stack[top++] = at + 1;
+            continue;
+        }
+        for (std::uint32_t s = n.first; s < n.first + n.count; ++s) {
+            double l = from, h = to;
+            if (clip(boxes_[s], o, d, inv, l, h) && visit(faces_[s])) return true;
+        }
+    }
+    return false;
+}
+
+}  // namespace cs
