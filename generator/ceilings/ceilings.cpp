@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <array>
+#include <map>
+#include <unordered_map>
 
 #include "core/rules.hpp"
 #include "core/slicer_time.hpp"
@@ -18,10 +21,10 @@ namespace {
 constexpr double kStation = 0.5;
 // A wall shorter than this is not worth a line of its own; its samples stay with the tree.
 constexpr double kMinWall = 1.5;
-// Whether the walls carry a sample is asked at points of the surface around it (DownSurface) this
+// Whether the walls carry a sample is asked at points of the surface around it (JudgedSurface) this
 // fraction of the reach apart.
 constexpr double kProbeStepOfReach = 0.06;
-// A point of the surface lies within this many probe steps of a probed one (DownSurface).
+// A point of the surface lies within this many probe steps of a probed one (JudgedSurface).
 constexpr double kProbeCover = 1.21;
 // The walls carry a point within this fraction of coverage_reach of a wall's contact. `check`
 // judges at its lattice reach (coverage_reach or a hair more), so what is left is for the probes
@@ -133,7 +136,8 @@ struct Frame {
 
 // The floor and top of a wall at one station: the top a gap under the lowest ceiling over its
 // width and side clearance, all of it this region's overhang (near a sample of it); the floor the
-// bed, or a gap over a level face of the model the same under all of it. Nothing where any part
+// bed, or a gap over a level face of the model the same under all of it (the hybrid's:
+// hybrid_height under the top, with room below every probe: hybrid_floor). Nothing where any part
 // is not so.
 std::optional<std::pair<double, double>> station_of(const ModelQuery& q, const XyGrid<std::size_t>& region,
                                                     const std::vector<Sample>& samples, const Vec3& c, const Vec3& across,
@@ -309,26 +313,86 @@ bool rows_along_x(const Region& r, const XyGrid<std::size_t>& grid, const std::v
     return r.box.max.x - r.box.min.x >= r.box.max.y - r.box.min.y;
 }
 
-RegionWalls region_walls(const ModelQuery& q, const Region& r, const std::vector<Sample>& samples, const Params& p,
-                         double overhang_nz) {
+// Where a region's rows run (rows_along_x), and its outer rows, which do not depend on the span:
+// as far out as walls stand along them (as long as a row just inside the outer samples would):
+// where the ceiling goes on past the outer samples (a bore's or tunnel's sides beyond the last
+// lattice row) the walls then reach what those samples cover. Where the outer samples lie on the
+// rim, the rows stand just inside them (a wall's half width, its side clearance and half a
+// station: nothing is above a wall centred on a rim). A region narrower than that gets one row
+// down its middle.
+struct RowPlan {
+    XyGrid<std::size_t> grid;  // the region's samples
+    Frame f;
+    double u0, u1;             // where rows start and end
+    double v_lo, v_hi;         // the outer rows (equal: one row)
+    std::vector<Run> lo_runs, hi_runs;
+    bool moved = false;        // an outer row stands beyond the outer samples
+    double mid = 0, across = 0;  // the rows' middle and the outer rows' distance
+};
+
+RowPlan plan_rows(const ModelQuery& q, const Region& r, const std::vector<Sample>& samples, const Params& p,
+                  double overhang_nz) {
     XyGrid<std::size_t> grid(p.sampling_distance);
     for (std::size_t i : r.samples) grid.insert(samples[i].p, i);
     const bool along_x = rows_along_x(r, grid, samples, p);
     const Frame f{along_x};
-    // The outer rows as near the outer samples as a wall may stand (its half width and side
-    // clearance inside them: nothing is above a wall centred on a rim), for the rim beyond those
-    // samples; as few rows between as keep them at most the span apart.
     const double inset = 0.5 * p.wall_thickness + tip_side_clearance(p) + 0.5 * kStation;
-    const double lo_v = coord(r.box.min, !along_x), hi_v = coord(r.box.max, !along_x), across = hi_v - lo_v - 2 * inset;
-    const int gaps = across <= 0 ? 0 : static_cast<int>(std::ceil(across / p.ceiling_span - 1e-9));
-    const double spacing = gaps == 0 ? 0 : across / gaps;
     const double u0 = coord(r.box.min, along_x) - p.sampling_distance, u1 = coord(r.box.max, along_x) + p.sampling_distance;
+    auto row_length = [](const std::vector<Run>& runs) {
+        double l = 0;
+        for (const Run& w : runs) l += horizontal_distance(w.top.front(), w.top.back());
+        return l;
+    };
+    // The outer row on one side (`out` -1: low v, +1: high v), and its walls.
+    auto outer_row = [&](double sample_v, double out) {
+        const double inner = sample_v - out * inset;
+        std::vector<Run> best = walls_along(q, grid, samples, f, inner, u0, u1, p, overhang_nz);
+        const double need = row_length(best);
+        const int steps = static_cast<int>(std::floor((wall_reach(p) + inset) / kStation));
+        for (int k = steps; k > 0 && need > 0; --k) {
+            auto runs = walls_along(q, grid, samples, f, inner + out * k * kStation, u0, u1, p, overhang_nz);
+            if (row_length(runs) >= need) return std::pair{inner + out * k * kStation, runs};
+        }
+        return std::pair{inner, best};
+    };
+    const double lo_v = coord(r.box.min, !along_x), hi_v = coord(r.box.max, !along_x);
+    if (hi_v - lo_v - 2 * inset <= 0) {
+        const double v = 0.5 * (lo_v + hi_v);
+        auto runs = walls_along(q, grid, samples, f, v, u0, u1, p, overhang_nz);
+        return {std::move(grid), f, u0, u1, v, v, runs, runs, false, v, 0};
+    }
+    auto [v_lo, lo_runs] = outer_row(lo_v, -1);
+    auto [v_hi, hi_runs] = outer_row(hi_v, 1);
+    const bool moved = v_lo != lo_v + inset || v_hi != hi_v - inset;
+    const double mid = moved ? 0.5 * (v_lo + v_hi) : 0.5 * (lo_v + hi_v);
+    const double across = moved ? v_hi - v_lo : hi_v - lo_v - 2 * inset;
+    return {std::move(grid), f, u0, u1, v_lo, v_hi, std::move(lo_runs), std::move(hi_runs), moved, mid, across};
+}
+
+// The region's walls: its planned outer rows, as few rows between as keep them at most `span`
+// apart, and the joins.
+RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::vector<Sample>& samples, const Params& p,
+                         double overhang_nz, double span) {
+    const XyGrid<std::size_t>& grid = plan.grid;
+    const Frame& f = plan.f;
+    const bool along_x = f.along_x;
     std::vector<std::vector<Run>> by_row;
     std::vector<double> row_v;
-    for (int j = 0; j <= gaps; ++j) {
-        const double v = 0.5 * (lo_v + hi_v) + (j - 0.5 * gaps) * spacing;
-        by_row.push_back(walls_along(q, grid, samples, f, v, u0, u1, p, overhang_nz));
-        row_v.push_back(v);
+    if (plan.v_hi == plan.v_lo) {
+        row_v.push_back(plan.v_lo);
+        by_row.push_back(plan.lo_runs);
+    } else {
+        // Spaced from the middle out (the outer rows' own walls where they stand beyond the
+        // outer samples).
+        const int gaps = static_cast<int>(std::ceil(plan.across / span - 1e-9));
+        const double spacing = plan.across / gaps, mid = plan.mid;
+        for (int j = 0; j <= gaps; ++j) {
+            const double v = plan.moved && j == 0 ? plan.v_lo : plan.moved && j == gaps ? plan.v_hi : mid + (j - 0.5 * gaps) * spacing;
+            row_v.push_back(v);
+            by_row.push_back(plan.moved && j == 0      ? plan.lo_runs
+                             : plan.moved && j == gaps ? plan.hi_runs
+                                                       : walls_along(q, grid, samples, f, v, plan.u0, plan.u1, p, overhang_nz));
+        }
     }
     RegionWalls out;
     std::vector<std::vector<char>> joined(by_row.size());
@@ -430,6 +494,10 @@ std::optional<Vec3> contact_above(const ModelQuery& q, const Vec3& x, const Para
 struct Contacts {
     std::vector<std::pair<Vec3, Vec3>> segments;
     XyGrid<std::size_t> near{1.0};  // by each segment's middle
+    // The walls' length, and how much of it holds the ceiling narrower than along both edges of
+    // its top (short tops, and long ones with an edge held on less than half their length: the
+    // ceiling sloping across them).
+    double length = 0, narrow = 0;
 };
 constexpr double kUnsureTop = 1.02;
 
@@ -444,21 +512,34 @@ Contacts wall_contacts(const ModelQuery& q, const std::vector<CeilingWall>& wall
         const Vec3 a{w.from.x, w.from.y, w.top}, b{w.to.x, w.to.y, w.top};
         const double length = horizontal_distance(a, b);
         const bool is_long = length >= kUnsureTop * std::max(two_reaches, 3 * w.thickness);
+        const Vec3 d = (b - a) * (1.0 / length), across = Vec3{-d.y, d.x, 0} * (0.5 * w.thickness);
+        out.length += length;
         if (!is_long) {
+            out.narrow += length;
             if (length >= two_reaches && length >= 3 * w.thickness / kUnsureTop) continue;  // unsure
-            if (auto c = contact_above(q, (a + b) * 0.5, p)) add(*c, *c);
+            // As `check` finds a short top's contact: at its middle, with the model over the corner
+            // (or middle) nearest below it, where that is within a gap and a layer.
+            const Vec3 mid = (a + b) * 0.5;
+            std::optional<Vec3> nearest;
+            for (const Vec3& x : {mid, a + across, a - across, b + across, b - across})
+                if (auto c = contact_above(q, x, p); c && (!nearest || c->z - x.z < nearest->z - mid.z))
+                    nearest = Vec3{mid.x, mid.y, mid.z + (c->z - x.z)};
+            if (nearest) add(*nearest, *nearest);
             continue;
         }
-        const Vec3 d = (b - a) * (1.0 / length), across = Vec3{-d.y, d.x, 0} * (0.5 * w.thickness);
         const int n = static_cast<int>(std::ceil(length / kContactStep));
+        bool edges_held = true;
         for (const Vec3 side : {Vec3{}, across, across * -1.0}) {
             std::optional<Vec3> last;
+            int held = 0;
             for (int k = 0; k <= n; ++k) {
                 const auto c = contact_above(q, a + side + (b - a) * (double(k) / n), p);
-                if (c) add(last ? *last : *c, *c);
+                if (c) add(last ? *last : *c, *c), ++held;
                 last = c;
             }
+            if (side.x != 0 || side.y != 0) edges_held = edges_held && 2 * held >= n + 1;
         }
+        if (!edges_held) out.narrow += length;
     }
     return out;
 }
@@ -475,21 +556,45 @@ bool near_contact(const Contacts& c, const Vec3& x, double reach, const Params& 
     });
 }
 
-// The model's surface seen from below (faces facing down: overhangs, the steep undersides beside
-// them, rims and ridges), as points: the lattice points (a probe step apart) inside each face, and
-// points as far apart along its edges, its corners among them. A point of such a face lies within
-// 1.21 probe steps of one (half a diagonal to the nearest lattice point, or across the face's
-// edge to it and half a step along the edge). Made cell by cell on first use.
-class DownSurface {
+// What `check` judges of the model's surface (check/judge_overhangs.hpp, on the model as written:
+// float vertices, identical ones welded), as points: overhang faces (the lattice points a probe
+// step apart inside each, and points as far apart along its edges, its corners among them), ridges
+// (convex edges between two faces facing down, flatter than the critical angle) along their
+// length, and lowest vertices (every neighbour higher). A point `check` judges lies within 1.21
+// probe steps of one (half a diagonal to the nearest lattice point, or across the face's edge to
+// it and half a step along the edge). A superset by a hair (kJudgedSlack): a face, edge or vertex
+// within rounding of check's bounds counts. The steep undersides beside an overhang (a bore's
+// sides) are not judged, so they ask nothing of the walls. Made cell by cell on first use, from the
+// faces that touch the cell: an edge or vertex inside it has all its faces there.
+constexpr double kJudgedSlack = 1e-6;
+
+class JudgedSurface {
 public:
-    DownSurface(const Mesh& m, double step, const Box3& near) : m_(m), step_(step), faces_(kCell), points_(kCell) {
-        for (std::size_t f = 0; f < m.faces.size(); ++f) {
-            if (!(face_normal_unnormalized(m, m.faces[f]).z < 0)) continue;
+    JudgedSurface(const Mesh& m, double step, const Box3& near, double critical_angle)
+        : step_(step), overhang_nz_(-std::sin(deg_to_rad(critical_angle))), line_ez_(std::cos(deg_to_rad(critical_angle))),
+          faces_(kCell), points_(kCell) {
+        // As written: float vertices (the .model.stl), identical ones one vertex. Only the faces
+        // near the walls are kept (welded as they come).
+        std::unordered_map<std::array<float, 3>, std::uint32_t, FloatsHash> welded;
+        std::vector<std::uint32_t> vertex(m.vertices.size(), kNone);
+        auto weld = [&](std::uint32_t v) {
+            if (vertex[v] == kNone) {
+                const std::array<float, 3> key{float(m.vertices[v].x), float(m.vertices[v].y), float(m.vertices[v].z)};
+                const auto [it, fresh] = welded.try_emplace(key, static_cast<std::uint32_t>(at_.size()));
+                if (fresh) at_.push_back({key[0], key[1], key[2]});
+                vertex[v] = it->second;
+            }
+            return vertex[v];
+        };
+        for (const auto& f : m.faces) {
             Box3 box;
-            for (auto v : m.faces[f]) box.add(m.vertices[v]);
+            for (auto v : f) box.add(m.vertices[v]);
             if (!overlaps(box, near)) continue;
+            const Triangle t{weld(f[0]), weld(f[1]), weld(f[2])};
+            if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue;  // welded away
             for (long i = faces_.index(box.min.x); i <= faces_.index(box.max.x); ++i)
-                for (long j = faces_.index(box.min.y); j <= faces_.index(box.max.y); ++j) faces_.insert_at(i, j, f);
+                for (long j = faces_.index(box.min.y); j <= faces_.index(box.max.y); ++j) faces_.insert_at(i, j, tris_.size());
+            tris_.push_back(t);
         }
     }
 
@@ -505,51 +610,108 @@ public:
 
 private:
     static constexpr double kCell = 1.0;
+    static constexpr std::uint32_t kNone = ~std::uint32_t{0};
+    struct FloatsHash {
+        std::size_t operator()(const std::array<float, 3>& k) const {
+            std::size_t h = 0;
+            for (float x : k) h = h * 1000003u ^ std::hash<float>{}(x);
+            return h;
+        }
+    };
+
+    Vec3 unit_normal(const Triangle& t) const {
+        const Vec3 n = cross(at_[t[1]] - at_[t[0]], at_[t[2]] - at_[t[0]]);
+        const double l = norm(n);
+        return l > 0 ? n / l : Vec3{};
+    }
 
     const std::vector<Vec3>& cell(long i, long j) {
         if (const auto* done = points_.at(i, j)) return *done;
         std::vector<Vec3> out;
-        const double x0 = i * kCell, y0 = j * kCell;
         auto inside_cell = [&](const Vec3& x) { return points_.index(x.x) == i && points_.index(x.y) == j; };
-        if (const auto* faces = faces_.at(i, j))
+        auto along = [&](const Vec3& u, const Vec3& v) {
+            const int n = std::max(1, static_cast<int>(std::ceil(distance(u, v) / step_)));
+            for (int k = 0; k <= n; ++k)
+                if (const Vec3 x = u + (v - u) * (double(k) / n); inside_cell(x)) out.push_back(x);
+        };
+        if (const auto* faces = faces_.at(i, j)) {
+            std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> by_edge;
+            std::map<std::uint32_t, double> lowest_neighbour;
             for (std::size_t f : *faces) {
-                const Vec3 &a = m_.vertices[m_.faces[f][0]], &b = m_.vertices[m_.faces[f][1]], &c = m_.vertices[m_.faces[f][2]];
-                for (const auto& [u, v] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}}) {
-                    const int n = std::max(1, static_cast<int>(std::ceil(horizontal_distance(u, v) / step_)));
-                    for (int k = 0; k < n; ++k)
-                        if (const Vec3 x = u + (v - u) * (double(k) / n); inside_cell(x)) out.push_back(x);
+                const Triangle& t = tris_[f];
+                for (int k = 0; k < 3; ++k) {
+                    by_edge[std::minmax(t[k], t[(k + 1) % 3])].push_back(f);
+                    auto [it, fresh] = lowest_neighbour.try_emplace(t[k], INFINITY);
+                    it->second = std::min({it->second, at_[t[(k + 1) % 3]].z, at_[t[(k + 2) % 3]].z});
                 }
-                // Lattice points of the cell inside the face (projected), z from its plane.
-                const double det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
-                if (std::abs(det) < 1e-12) continue;
-                const double lo_x = std::max(x0, std::min({a.x, b.x, c.x})), hi_x = std::min(x0 + kCell, std::max({a.x, b.x, c.x}));
-                const double lo_y = std::max(y0, std::min({a.y, b.y, c.y})), hi_y = std::min(y0 + kCell, std::max({a.y, b.y, c.y}));
-                for (double x = std::ceil(lo_x / step_) * step_; x <= hi_x; x += step_)
-                    for (double y = std::ceil(lo_y / step_) * step_; y <= hi_y; y += step_) {
-                        const double l1 = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / det;
-                        const double l2 = ((b.x - a.x) * (y - a.y) - (x - a.x) * (b.y - a.y)) / det;
-                        if (l1 < 0 || l2 < 0 || l1 + l2 > 1) continue;
-                        const Vec3 pt{x, y, a.z + l1 * (b.z - a.z) + l2 * (c.z - a.z)};
-                        if (inside_cell(pt)) out.push_back(pt);
-                    }
+                if (unit_normal(t).z < overhang_nz_ + kJudgedSlack) face_points(t, i, j, out, along);
             }
+            for (const auto& [e, fs] : by_edge)
+                if (fs.size() == 2 && is_ridge(e, tris_[fs[0]], tris_[fs[1]])) along(at_[e.first], at_[e.second]);
+            // Every neighbour higher, compared exactly: these are check's own float coordinates
+            // (a flat face's corners are not lowest).
+            for (const auto& [v, z] : lowest_neighbour)
+                if (z > at_[v].z && inside_cell(at_[v])) out.push_back(at_[v]);
+        }
         points_.insert_at(i, j, Vec3{});  // marks the cell made (an empty list stays findable)
         auto& stored = const_cast<std::vector<Vec3>&>(*points_.at(i, j));
         stored = std::move(out);
         return stored;
     }
 
-    const Mesh& m_;
-    double step_;
+    // The lattice points of cell (i, j) inside an overhang face (projected), z from its plane,
+    // and points along its edges.
+    template <typename Along>
+    void face_points(const Triangle& t, long i, long j, std::vector<Vec3>& out, Along along) const {
+        const Vec3 &a = at_[t[0]], &b = at_[t[1]], &c = at_[t[2]];
+        along(a, b), along(b, c), along(c, a);
+        const double det = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+        if (std::abs(det) < 1e-12) return;
+        const double x0 = i * kCell, y0 = j * kCell;
+        const double lo_x = std::max(x0, std::min({a.x, b.x, c.x})), hi_x = std::min(x0 + kCell, std::max({a.x, b.x, c.x}));
+        const double lo_y = std::max(y0, std::min({a.y, b.y, c.y})), hi_y = std::min(y0 + kCell, std::max({a.y, b.y, c.y}));
+        for (double x = std::ceil(lo_x / step_) * step_; x <= hi_x; x += step_)
+            for (double y = std::ceil(lo_y / step_) * step_; y <= hi_y; y += step_) {
+                const double l1 = ((x - a.x) * (c.y - a.y) - (c.x - a.x) * (y - a.y)) / det;
+                const double l2 = ((b.x - a.x) * (y - a.y) - (x - a.x) * (b.y - a.y)) / det;
+                if (l1 < 0 || l2 < 0 || l1 + l2 > 1) continue;
+                const Vec3 pt{x, y, a.z + l1 * (b.z - a.z) + l2 * (c.z - a.z)};
+                if (points_.index(pt.x) == i && points_.index(pt.y) == j) out.push_back(pt);
+            }
+    }
+
+    // A ridge as `check` finds one: two faces facing down, not both overhangs (their points are
+    // judged already), the edge flatter than the critical angle and the lowest line of its
+    // cross-section (both faces rise away from it).
+    bool is_ridge(std::pair<std::uint32_t, std::uint32_t> e, const Triangle& f0, const Triangle& f1) const {
+        const Vec3 n0 = unit_normal(f0), n1 = unit_normal(f1);
+        if (n0.z < overhang_nz_ - kJudgedSlack && n1.z < overhang_nz_ - kJudgedSlack) return false;
+        if (!(n0.z < kJudgedSlack && n1.z < kJudgedSlack)) return false;
+        const Vec3 &u = at_[e.first], d = at_[e.second] - u;
+        const double l = norm(d);
+        if (!(l > 0) || std::abs(d.z) / l >= line_ez_ + kJudgedSlack) return false;
+        auto rises = [&](const Triangle& f) {
+            Vec3 w;
+            for (auto c : f)
+                if (c != e.first && c != e.second) w = at_[c] - u;
+            const Vec3 away = w - d * (dot(w, d) / dot(d, d));
+            return away.z > -kJudgedSlack * norm(away);
+        };
+        return rises(f0) && rises(f1);
+    }
+
+    double step_, overhang_nz_, line_ez_;
+    std::vector<Vec3> at_;               // welded vertices, at float precision
+    std::vector<Triangle> tris_;         // welded faces near the walls
     XyGrid<std::size_t> faces_;
     XyGrid<Vec3> points_;
 };
 
-// Do the walls carry everything the sample at s covers: every point of the model's surface seen
-// from below within coverage_reach of it on its own stretch of surface (overhang.hpp's `covers`,
-// as the sampling counts it) lies within the walls' reach of a contact? Then its tip may go:
+// Do the walls carry everything the sample at s covers: every point of the surface `check` judges
+// within coverage_reach of it on its own stretch of surface (overhang.hpp's `covers`, as the
+// sampling counts it) lies within the walls' reach of a contact? Then its tip may go:
 // `check` finds every point it held within its own reach of a wall.
-bool walls_carry(DownSurface& surface, const Contacts& contacts, const Vec3& s, const Params& p) {
+bool walls_carry(JudgedSurface& surface, const Contacts& contacts, const Vec3& s, const Params& p) {
     const double reach = wall_reach(p), r = coverage_reach(p.sampling_distance);
     const double disc = r + kProbeCover * kProbeStepOfReach * r;  // every point within r has a probe in it
     if (!near_contact(contacts, s, reach, p)) return false;
@@ -557,6 +719,25 @@ bool walls_carry(DownSurface& surface, const Contacts& contacts, const Vec3& s, 
         return covers(s, x, disc, p.critical_angle) && !near_contact(contacts, x, reach, p);
     });
 }
+
+// One way of laying a region's walls: the runs, their flat pieces, the pieces' contacts as `check`
+// finds them, and the region's samples they do not carry.
+struct Layout {
+    RegionWalls w;
+    std::vector<CeilingWall> pieces;
+    Contacts tops;
+    std::vector<Sample> left;
+};
+// Rows this share of twice the walls' reach apart hold the ceiling midway between them where the
+// walls hold it along a narrow line: a staircase down a slope is held at each piece's middle only,
+// the middles up to a piece (a millimetre or so) apart along the row, so a point midway is a little
+// farther from the nearest than half the rows' distance; a ceiling sloping steeply across a row is
+// held along the wall's lower edge only. At the span, rows need long tops held along both edges.
+// Tried where at least half the walls' length is held so narrowly and rows the span apart leave
+// samples to a tree. (Rows
+// along the most level direction between x and y were tried too: on the tuning models' slopes
+// and on tilted planes they left more samples than these, at both distances.)
+constexpr double kTightRows = 0.9;
 
 // Does any wall's solid (its width across, foot to top) overlap one of the boxes?
 bool enters_blocker(const std::vector<Run>& walls, const std::vector<Box3>& blockers, const Params& p) {
@@ -611,32 +792,46 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         near.max = {std::max(near.max.x, r.box.max.x), std::max(near.max.y, r.box.max.y), std::max(near.max.z, r.box.max.z)};
     const double margin = 2 * p.sampling_distance + 2 * coverage_reach(p.sampling_distance);
     near.min = near.min - Vec3{margin, margin, margin}, near.max = near.max + Vec3{margin, margin, margin};
-    DownSurface surface(q.mesh(), kProbeStepOfReach * coverage_reach(p.sampling_distance), near);
+    JudgedSurface surface(q.mesh(), kProbeStepOfReach * coverage_reach(p.sampling_distance), near, p.critical_angle);
+    const double tight = std::min(p.ceiling_span, kTightRows * 2 * wall_reach(p));
     for (const Region& r : regions) {
-        RegionWalls w = region_walls(q, r, samples, p, overhang_nz);
-        if (w.walls.empty() || enters_blocker(w.walls, blockers, p)) continue;
-        // The region as a tree, against its walls plus a tree for what they leave (rims, ends).
-        std::vector<CeilingWall> pieces;
-        for (const Run& run : w.walls)
-            for (auto& piece : flat_pieces(run, p)) pieces.push_back(piece);
-        pieces = finish(std::move(pieces));
-        if (pieces.empty()) continue;
-        const Contacts own_tops = wall_contacts(q, pieces, p);
-        std::vector<Sample> own, left;
-        for (std::size_t i : r.samples) {
-            own.push_back(samples[i]);
-            if (!walls_carry(surface, own_tops, samples[i].p, p)) left.push_back(samples[i]);
+        // Rows the span apart; where they leave samples to a tree, also `tight` apart (a slope's
+        // staircase of short pieces), keeping the layout that leaves fewer (the first of equals).
+        const RowPlan plan = plan_rows(q, r, samples, p, overhang_nz);
+        std::optional<Layout> best;
+        for (double span : {p.ceiling_span, tight}) {
+            if (best && (best->left.empty() || span == p.ceiling_span || best->tops.narrow < 0.5 * best->tops.length)) break;
+            Layout l;
+            l.w = region_walls(q, plan, samples, p, overhang_nz, span);
+            if (l.w.walls.empty() || enters_blocker(l.w.walls, blockers, p)) continue;
+            for (const Run& run : l.w.walls)
+                for (auto& piece : flat_pieces(run, p)) l.pieces.push_back(piece);
+            l.pieces = finish(std::move(l.pieces));
+            if (l.pieces.empty()) continue;
+            l.tops = wall_contacts(q, l.pieces, p);
+            for (std::size_t i : r.samples)
+                if (!walls_carry(surface, l.tops, samples[i].p, p)) l.left.push_back(samples[i]);
+            if (!best || l.left.size() < best->left.size()) best = std::move(l);
         }
+        if (!best) continue;
+        const RegionWalls& w = best->w;
+        const std::vector<CeilingWall>& pieces = best->pieces;
+        const std::vector<Sample>& left = best->left;
+        std::vector<Sample> own;
+        for (std::size_t i : r.samples) own.push_back(samples[i]);
         // Pricing grows the region's tree twice (for all its samples, and for those the walls
         // leave): the stage's cost. Walls that leave a tree under most of the region only add to it.
         if (left.size() > most_left * own.size()) continue;
-        const TreeCount t = tree_count(own, {}), rest = tree_count(left, pieces);
         auto tree_s = [](const SlicerRoute& route, const TreeCount& c) {
             return tree_route_seconds(route, c.island_layers, c.outline_mm, c.hop_mm);
         };
+        const TreeCount t = tree_count(own, {});
         const double tree_cura = tree_s(kCuraRoute, t), tree_prusa = tree_s(kPrusaRoute, t);
-        const double walls_cura = walls_route_seconds(kCuraRoute, w, p) + tree_s(kCuraRoute, rest);
-        const double walls_prusa = walls_route_seconds(kPrusaRoute, w, p) + tree_s(kPrusaRoute, rest);
+        // Walls that alone cost more than the tree lose whatever the rest costs: its tree is not grown.
+        double walls_cura = walls_route_seconds(kCuraRoute, w, p), walls_prusa = walls_route_seconds(kPrusaRoute, w, p);
+        if (!(walls_cura < tree_cura && walls_prusa < tree_prusa)) continue;
+        const TreeCount rest = tree_count(left, pieces);
+        walls_cura += tree_s(kCuraRoute, rest), walls_prusa += tree_s(kPrusaRoute, rest);
         // Either slicer may print it: walls only where both print them faster.
         if (!(walls_cura < tree_cura && walls_prusa < tree_prusa)) continue;
         ++out.regions;

@@ -13,7 +13,11 @@
 //     rows      at most ceiling_span apart (no walls where that is more than twice the walls'
 //               reach and a wall: nothing between two rows would be carried), where the ceiling is level (along x or y, whichever
 //               changes height less, so a sloping or round ceiling gets long flat pieces; else
-//               along the longer side); each row is cut into walls where the ceiling above it is an overhang of this region all across the
+//               along the longer side); the outer rows as far out as walls stand along them (a
+//               bore's or tunnel's ceiling goes on past its outer samples), else just inside the
+//               outer samples; where rows the span apart leave samples, also rows 0.9 x twice the
+//               walls' reach apart (a slope's staircase is held at each piece's middle only), the
+//               layout leaving fewer kept; each row is cut into walls where the ceiling above it is an overhang of this region all across the
 //               wall's width plus tip_side_clearance (a wall beside it, or a hole, ends a wall)
 //     floors    the bed, or a level face of the model (a gap above it): walls under a roof over
 //               the model stand on it as pillars do
@@ -27,12 +31,15 @@
 //               where they cost less than the region's own tree on the Cura route AND on the
 //               PrusaSlicer route (which slicer the user has is not known); the tree is grown
 //               from the region's samples alone and counted by the caller's `tree_count`
-//     coverage  a sample is handed to the walls when every point of the surface it covers (as the
+//     coverage  a sample is handed to the walls when every point `check` judges (overhang faces,
+//               ridges, lowest points: check/judge_overhangs.hpp) that the sample covers (as the
 //               sampling counts it: coverage_reach, same stretch of surface) lies within
 //               kWallReachMargin x coverage_reach of a wall's contact as `check` finds them (a
-//               long top along its length, a short one at its middle, where the model is right
-//               above); the others stay with the tree (tips at the ends and rims the walls do not
-//               reach). So `check` finds every point such a sample held within its reach of a wall.
+//               long top along its length where the model is right above; a short one at its
+//               middle, with the model over its nearest corner); the others stay with the tree
+//               (tips at the ends and rims the walls do not reach). So `check` finds every point
+//               such a sample held within its reach of a wall; steep undersides `check` does not
+//               judge (a bore's sides) ask nothing of the walls.
 //
 // Example: a 50 x 10 mm roof 5 mm over the bed, span 3.4 mm: 4 rows of 50 mm, 3 joins, one
 // meander; the roof's 80 samples all go to the walls.

@@ -189,6 +189,46 @@ TEST(Ceilings, WhatTheWallsTakeTheyHoldOnExtruderIdler) {
     expect_walls_hold_what_they_take(w, "extruder_idler");
 }
 
+// A tunnel along x (x 0..30) through a block (y -10..10, z 0..10), standing on the bed: its round
+// ceiling z = 2 + sqrt(6.5^2 - y^2) over |y| <= 6 (crown 8.5 mm up), its sides vertical below 4.5.
+// Past |y| = 4.2 the ceiling is steeper than the critical angle (50 degrees): those faces face down
+// but `check` does not judge them (a printable slope going down to the side walls).
+Mesh tunnel() {
+    std::vector<double> xs, ys, zs{0, 6, 10};
+    for (int i = 0; i <= 30; ++i) xs.push_back(i);
+    for (int j = -20; j <= 20; ++j) ys.push_back(0.5 * j);
+    test::CellGrid g(xs, ys, zs);
+    g.fill({0, -10, 0}, {30, -6, 10});
+    g.fill({0, 6, 0}, {30, 10, 10});
+    g.fill({0, -10, 6}, {30, 10, 10});
+    Mesh m = g.mesh();
+    for (auto& v : m.vertices)
+        if (std::abs(v.z - 6) < 1e-9 && std::abs(v.y) <= 6 + 1e-9) v.z = 2 + std::sqrt(6.5 * 6.5 - v.y * v.y);
+    return m;
+}
+
+// The tunnel's steep sides face down beside its crown; samples whose reach takes in a stretch of
+// them still go to the walls (only what `check` judges must lie within the walls' reach), and
+// `check` finds held all it finds held with a tip at every sample.
+TEST(Ceilings, SamplesBesideSteepSidesThatCheckDoesNotJudgeGoToTheWalls) {
+    Walled w = walled(tunnel());
+    ASSERT_FALSE(w.ceilings.walls.empty());
+    const CheckResult judged = check_supports(w.model, Mesh{}, w.p, {});
+    double widest = 0;  // the judged overhang's half width across the tunnel
+    std::size_t near_sides = 0, carried_near_sides = 0;
+    for (const Sample& s : w.samples.samples) {
+        if (std::abs(s.p.y) < 2 || s.p.x < 3 || s.p.x > 27) continue;  // beside the sides, off the open ends
+        ++near_sides;
+        carried_near_sides += std::none_of(w.ceilings.rest.begin(), w.ceilings.rest.end(),
+                                           [&](const Sample& r) { return distance(r.p, s.p) < 1e-9; });
+    }
+    for (const Vec3& x : judged.uncovered) widest = std::max(widest, std::abs(x.y));
+    EXPECT_LT(widest, 4.3);  // the steep sides are not judged
+    ASSERT_GT(near_sides, 0u);
+    EXPECT_EQ(carried_near_sides, near_sides);
+    expect_walls_hold_what_they_take(w, "tunnel");
+}
+
 TEST(Ceilings, RowsAreAtMostTheSpanApart) {
     Params p;
     p.ceiling_span = 2.0;
@@ -268,4 +308,17 @@ TEST(CheckWalls, AWallsLongTopIsAContactAlongItsWholeLength) {
     // Raised into the deck's gap it is fused along its length.
     CeilingWall fused{{-7.5, 0, 0}, {7.5, 0, 0}, 0, 8 - 0.05};
     EXPECT_EQ(check_supports(model, wall_mesh(fused), p, {}).fused_contacts, 1u);
+}
+
+// A roof sloping both ways (one to three tenths along x and y): rows along x or y are staircases
+// of short pieces, each held at its middle only, so the rows stand close enough for a point midway
+// between two to be within reach of one; the walls then take nearly every sample, and hold them.
+TEST(Ceilings, ARoofSlopingBothWaysGetsRowsCloseEnoughForItsStaircases) {
+    for (const auto& [gx, gy] : {std::pair{0.1, 0.1}, {0.3, 0.1}, {0.3, 0.3}}) {
+        const Mesh roof = bent_roof([&](double x, double y) { return 1 + gx * x / 3 + gy * y / 3; });
+        Walled w = walled(roof);
+        const std::string what = "slopes " + std::to_string(gx) + ", " + std::to_string(gy);
+        EXPECT_GE(w.ceilings.covered, 0.9 * w.samples.samples.size()) << what;
+        expect_walls_hold_what_they_take(w, what);
+    }
 }
