@@ -1,4 +1,5 @@
 #include "ceilings/ceilings.hpp"
+#include "ceilings/hybrid.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -54,6 +55,7 @@ constexpr double kLevelFloor = 0.95;
 // Where a wall under x may stand: the bed (0), or a level face of the model a gap below... the
 // floor's height; nothing where the fall lands on a slope or less than a wall's room is left.
 std::optional<double> floor_under(const ModelQuery& q, const Vec3& x, const Params& p) {
+    if (p.hybrid_height > 0) return hybrid_floor(q, x, p);  // the hybrid's feet hang on the tree
     auto hit = q.first_hit(x - Vec3{0, 0, 1e-3}, {0, 0, -1});
     if (!hit) return 0.0;
     if (!p.supports_on_model) return std::nullopt;  // --buildplate-only: the bed or nothing
@@ -134,7 +136,8 @@ struct Frame {
 
 // The floor and top of a wall at one station: the top a gap under the lowest ceiling over its
 // width and side clearance, all of it this region's overhang (near a sample of it); the floor the
-// bed, or a gap over a level face of the model the same under all of it. Nothing where any part
+// bed, or a gap over a level face of the model the same under all of it (the hybrid's:
+// hybrid_height under the top, with room below every probe: hybrid_floor). Nothing where any part
 // is not so.
 std::optional<std::pair<double, double>> station_of(const ModelQuery& q, const XyGrid<std::size_t>& region,
                                                     const std::vector<Sample>& samples, const Vec3& c, const Vec3& across,
@@ -159,8 +162,9 @@ std::optional<std::pair<double, double>> station_of(const ModelQuery& q, const X
         lowest = std::min(lowest, *z);
         floor_lo = std::min(floor_lo, *floor), floor_hi = std::max(floor_hi, *floor);
     }
-    if (floor_hi - floor_lo > p.layer_height) return std::nullopt;
     const double top = lowest - p.gap;
+    if (p.hybrid_height > 0) return std::pair{top - p.hybrid_height, top};  // the foot follows the top
+    if (floor_hi - floor_lo > p.layer_height) return std::nullopt;
     if (top - floor_hi < touching_space(p)) return std::nullopt;
     return std::pair{floor_hi, top};
 }
@@ -761,12 +765,28 @@ bool enters_blocker(const std::vector<Run>& walls, const std::vector<Box3>& bloc
 
 }  // namespace
 
-Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
-                          const TreeCounter& tree_count, const std::vector<Box3>& blockers, double most_left) {
-    Ceilings out;
+bool ceilings_laid_out(const Params& p) {
     // Rows farther apart than twice the walls' reach (and a wall) carry nothing between them.
     const bool rows_reach = p.ceiling_span <= 2 * wall_reach(p) + p.wall_thickness;
-    if (p.ceiling_span <= 0 || !rows_reach || p.strategy != Strategy::tree) {
+    return p.ceiling_span > 0 && rows_reach && p.strategy == Strategy::tree;
+}
+
+Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
+                          const TreeCounter& tree_count, const std::vector<Box3>& blockers, double most_left) {
+    Params walls = p;
+    walls.hybrid_height = 0;  // walls stand on the bed or a floor (the hybrid: support_hybrid)
+    return lay_out_ceilings(q, samples, walls, [](std::vector<CeilingWall> pieces) { return pieces; },
+                            [&](const std::vector<Sample>& s, const std::vector<CeilingWall>&) {
+                                return s.empty() ? TreeCount{} : tree_count(s);
+                            },
+                            blockers, most_left);
+}
+
+Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
+                          const PiecesRule& finish, const PiecesTreeCounter& tree_count, const std::vector<Box3>& blockers,
+                          double most_left) {
+    Ceilings out;
+    if (!ceilings_laid_out(p)) {
         out.rest = samples;
         return out;
     }
@@ -800,6 +820,8 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
             if (l.w.walls.empty() || enters_blocker(l.w.walls, blockers, p)) continue;
             for (const Run& run : l.w.walls)
                 for (auto& piece : flat_pieces(run, p)) l.pieces.push_back(piece);
+            l.pieces = finish(std::move(l.pieces));
+            if (l.pieces.empty()) continue;
             l.tops = wall_contacts(q, l.pieces, p);
             for (std::size_t i : r.samples)
                 if (walls_carry(surface, l.tops, samples[i].p, p)) l.carried.push_back(i);
@@ -818,12 +840,12 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         auto tree_s = [](const SlicerRoute& route, const TreeCount& c) {
             return tree_route_seconds(route, c.island_layers, c.outline_mm, c.hop_mm);
         };
-        const TreeCount t = tree_count(own);
+        const TreeCount t = tree_count(own, {});
         const double tree_cura = tree_s(kCuraRoute, t), tree_prusa = tree_s(kPrusaRoute, t);
         // Walls that alone cost more than the tree lose whatever the rest costs: its tree is not grown.
         double walls_cura = walls_route_seconds(kCuraRoute, w, p), walls_prusa = walls_route_seconds(kPrusaRoute, w, p);
         if (!(walls_cura < tree_cura && walls_prusa < tree_prusa)) continue;
-        const TreeCount rest = left.empty() ? TreeCount{} : tree_count(left);
+        const TreeCount rest = tree_count(left, pieces);
         walls_cura += tree_s(kCuraRoute, rest), walls_prusa += tree_s(kPrusaRoute, rest);
         // Either slicer may print it: walls only where both print them faster.
         if (!(walls_cura < tree_cura && walls_prusa < tree_prusa)) continue;
