@@ -67,6 +67,7 @@ struct CeilingWall {
     double bottom = 0, top = 0;
     bool join = false;  // joins two rows (it ends inside the rows it joins)
     double thickness = 0.5;
+    bool on_tree = false;  // the hybrid's (ceilings/hybrid.hpp): its foot stands on a tip of the tree
 };
 
 // What a tree grown from some samples alone would give a slicer to print, counted as
@@ -80,6 +81,7 @@ using TreeCounter = std::function<TreeCount(const std::vector<Sample>&)>;
 struct Ceilings {
     std::vector<CeilingWall> walls;
     std::vector<Sample> rest;       // samples left to the tree, in the input's order
+    std::vector<Vec3> feet;         // the hybrid's: where a tip of the tree carries a piece's foot
     std::size_t regions = 0;        // regions given walls
     std::size_t covered = 0;        // samples the walls carry
     // The estimates of the chosen regions, seconds on the Cura and PrusaSlicer routes.
@@ -99,6 +101,22 @@ constexpr double kMostLeftToPrice = 0.5;
 Ceilings support_ceilings(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
                           const TreeCounter& tree_count, const std::vector<Box3>& support_blockers = {},
                           double most_left = kMostLeftToPrice);
+
+// The layout support_ceilings and support_hybrid (ceilings/hybrid.hpp) share: regions of samples
+// whose fall `floor_under` allows (p.hybrid_height > 0: room under a foot that far below the
+// ceiling for a tip and a strut; else the bed or a level floor), rows, joins and flat pieces as
+// above; `finish` then makes the region's pieces what is built (support_ceilings keeps them; the
+// hybrid cuts them at its feet); the region is priced with `tree_count(samples, pieces)` (the
+// tree for some samples, with a tip under the foot of each of `pieces` where they stand on the
+// tree; called with no pieces for the region's own tree).
+using PiecesRule = std::function<std::vector<CeilingWall>(std::vector<CeilingWall>)>;
+using PiecesTreeCounter = std::function<TreeCount(const std::vector<Sample>&, const std::vector<CeilingWall>&)>;
+Ceilings lay_out_ceilings(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
+                          const PiecesRule& finish, const PiecesTreeCounter& tree_count,
+                          const std::vector<Box3>& support_blockers, double most_left);
+
+// Are walls laid out at all with these parameters: a span, rows within reach of each other, a tree?
+bool ceilings_laid_out(const Params& p);
 
 // Closed, outward-facing mesh of one wall: a box, w.thickness wide across from-to, bottom to top,
 // its faces as triangles.

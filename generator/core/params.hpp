@@ -50,6 +50,11 @@ struct Params {
     // every point between two rows is within check's lattice reach of one. Every preset turns
     // them off (params.cpp): on the validation set they cost Cura minutes (README).
     double ceiling_span = 3.4;
+    // The hybrid (ceilings/hybrid.hpp): where the walls are not chosen, short walls this tall (mm)
+    // hang under the ceiling in the walls' rows (ceiling_span apart), their feet carried by the
+    // tree; 0: off. Chosen on the tuning set (u_overhang: 1 mm fastest of 1-6), confirmed on the
+    // validation set (README). Off wherever ceiling_span is 0 (every preset but generic-0.4).
+    double hybrid_height = 1;
     // Holes and slots the print bridges (every point of their overhang within reach of an inside
     // corner, a wall going down from it) get no support unless this is true (overhang.hpp).
     bool support_bridges = false;

@@ -76,7 +76,8 @@ private:
 // Parameters added after files were written (2026-11, issue 31): a file without them keeps its
 // preset's value, as it was made with.
 bool added_later(const std::string& name) {
-    return name == "cs_filament_density" || name == "support_bridges" || name == "ceiling_span";
+    return name == "cs_filament_density" || name == "support_bridges" || name == "ceiling_span" ||
+           name == "hybrid_height";
 }
 
 // Every parameter under its .scad name (core/param_table.hpp), each read as its row's kind.
@@ -90,6 +91,7 @@ Params read_params(const Reader& r) {
         if (added_later(name) && !r.has(name)) {
             if (name == "support_bridges") set_param(row, true, p);  // such a file supported bridged holes
             if (name == "ceiling_span") set_param(row, 0.0, p);      // such a file had no walls
+            if (name == "hybrid_height") set_param(row, 0.0, p);     // nor a hybrid
             continue;
         }
         ParamValue value;

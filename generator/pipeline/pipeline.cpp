@@ -21,6 +21,7 @@
 #include "query/model_query.hpp"
 #include "struts/solid_volume.hpp"
 #include "tree/slicer_cost.hpp"
+#include "tree/feet.hpp"
 #include "tree/tree.hpp"
 
 namespace cs {
@@ -156,12 +157,46 @@ SizedTree grow_cheaper_tree(const ModelQuery& q, const SupportTree& hung, const 
     return best;
 }
 
-TreeCounter tree_counter(const ModelQuery& q, const Params& p, const std::vector<Box3>& support_blockers) {
-    return [&q, p, support_blockers](const std::vector<Sample>& samples) {
-        const SizedTree t = grow_cheaper_tree(q, hang_leaves(q, samples, p, support_blockers), p, support_blockers);
+FeetTreeCounter feet_tree_counter(const ModelQuery& q, const Params& p, const std::vector<Box3>& support_blockers) {
+    return [&q, p, support_blockers](const std::vector<Sample>& samples, const std::vector<Vec3>& feet) {
+        const SupportTree hung = hang_feet(hang_leaves(q, samples, p, support_blockers), feet, p);
+        const SizedTree t = grow_cheaper_tree(q, hung, p, support_blockers);
         const SlicerCost c = t.tree.slicer_cost ? *t.tree.slicer_cost : estimate_slicer_cost(t.tree, mean_strut_widths(t), p);
         return TreeCount{c.island_layers, c.outline_mm, c.travel_mm};
     };
+}
+
+namespace {
+
+// The hybrid (ceilings/hybrid.hpp) under what the walls left, kept clear of the walls (their
+// boxes, a side clearance around them, join the user's blockers): the walls and the hybrid's
+// pieces together, the samples neither carries, and the hybrid's feet.
+Ceilings with_hybrid(const ModelQuery& q, const Ceilings& walls, const Params& p, const std::vector<Box3>& user_blockers) {
+    if (p.hybrid_height <= 0) return walls;
+    std::vector<Box3> blockers = user_blockers;
+    for (const CeilingWall& w : walls.walls) {
+        const double side = 0.5 * w.thickness + tip_side_clearance(p);
+        Box3 b;
+        b.min = {std::min(w.from.x, w.to.x) - side, std::min(w.from.y, w.to.y) - side, w.bottom};
+        b.max = {std::max(w.from.x, w.to.x) + side, std::max(w.from.y, w.to.y) + side, w.top};
+        blockers.push_back(b);
+    }
+    Ceilings hybrid = support_hybrid(q, walls.rest, p, feet_tree_counter(q, p, user_blockers), blockers);
+    if (hybrid.walls.empty()) return walls;
+    Ceilings out = walls;
+    out.walls.insert(out.walls.end(), hybrid.walls.begin(), hybrid.walls.end());
+    out.rest = std::move(hybrid.rest);
+    out.feet = std::move(hybrid.feet);
+    out.regions += hybrid.regions, out.covered += hybrid.covered;
+    out.tree_cura_s += hybrid.tree_cura_s, out.tree_prusa_s += hybrid.tree_prusa_s;
+    out.walls_cura_s += hybrid.walls_cura_s, out.walls_prusa_s += hybrid.walls_prusa_s;
+    return out;
+}
+
+}  // namespace
+
+TreeCounter tree_counter(const ModelQuery& q, const Params& p, const std::vector<Box3>& support_blockers) {
+    return [count = feet_tree_counter(q, p, support_blockers)](const std::vector<Sample>& samples) { return count(samples, {}); };
 }
 
 Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit, std::vector<CeilingWall> walls) {
@@ -537,30 +572,47 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         add_topped_up(r.samples, extra);
         hung = hang_more_leaves(*query, std::move(hung), extra, p, blockers);  // the new samples' leaves, in sample order
     }
-    // Walls under ceilings low over the bed take the samples they carry; the tree grows from the rest.
-    Ceilings ceilings = sw.time("ceilings", progress, [&] { return support_ceilings(*query, r.samples.samples, p, tree_counter(*query, p, blockers), blockers); });
-    SupportTree hung_rest = ceilings.walls.empty() ? SupportTree{} : hang_leaves(*query, ceilings.rest, p, blockers);
+    // Walls under ceilings low over the bed take the samples they carry; under ceilings higher up
+    // the hybrid's short walls (on the tree) take theirs; the tree grows from the rest.
+    Ceilings walls_only;
+    Ceilings ceilings = sw.time("ceilings", progress, [&] {
+        walls_only = support_ceilings(*query, r.samples.samples, p, tree_counter(*query, p, blockers), blockers);
+        return with_hybrid(*query, walls_only, p, blockers);
+    });
+    auto leaves_of = [&](const Ceilings& c) {
+        return c.walls.empty() ? SupportTree{} : hang_feet(hang_leaves(*query, c.rest, p, blockers), c.feet, p);
+    };
+    SupportTree hung_rest = leaves_of(ceilings);
     // The tree and the columns baseline start from the same leaves (hanging them does not depend
     // on the strategy); the baseline carries every sample.
-    SupportTree& leaves = ceilings.walls.empty() ? hung : hung_rest;
+    SupportTree* leaves = ceilings.walls.empty() ? &hung : &hung_rest;
     // Leaves the sweep lost (no way down, even alone) leave their overhang beyond reach: samples
     // beside them, and the tree grown once more with their leaves (bird and molecule at 120 mm).
     // One stage: the regrowth is part of growing the tree.
-    SizedTree grown = sw.time("tree", progress, [&] {
-        SizedTree first = grow_cheaper_tree(*query, leaves, p, blockers);
-        if (first.tree.stats.dropped <= leaves.stats.dropped) return first;
-        const auto held = coverers(first.tree, r.samples.samples, lost_samples(leaves, first.tree));
+    auto grow = [&] {
+        SizedTree first = grow_cheaper_tree(*query, *leaves, p, blockers);
+        if (first.tree.stats.dropped <= leaves->stats.dropped) return first;
+        const auto held = coverers(first.tree, r.samples.samples, lost_samples(*leaves, first.tree));
         auto more = samples_beyond_reach(r.model, oo, *query, r.samples, held, blockers, p);
         if (more.empty()) return first;
-        SupportTree more_leaves = hang_more_leaves(*query, leaves, more, p, blockers);
+        SupportTree more_leaves = hang_more_leaves(*query, *leaves, more, p, blockers);
         SizedTree regrown = grow_cheaper_tree(*query, more_leaves, p, blockers);
         // Kept only where it loses no more leaves: with many dead ends (menger_sponge3 with
         // --buildplate-only) the new leaves crowd the way down and more are lost.
         if (regrown.tree.stats.dropped > first.tree.stats.dropped) return first;
         add_topped_up(r.samples, more);
         if (!ceilings.walls.empty()) hung = hang_more_leaves(*query, std::move(hung), std::move(more), p, blockers);
-        leaves = std::move(more_leaves);
+        *leaves = std::move(more_leaves);
         return regrown;
+    };
+    SizedTree grown = sw.time("tree", progress, [&] {
+        SizedTree t = grow();
+        if (feet_carried(t.tree, ceilings.feet)) return t;
+        // The tree lost a foot of the hybrid (a wall on nothing): grown again without the hybrid.
+        ceilings = std::move(walls_only);
+        hung_rest = leaves_of(ceilings);
+        leaves = ceilings.walls.empty() ? &hung : &hung_rest;
+        return grow();
     });
     // The user's omitted struts are numbered in the final tree (the one the .scad shows).
     r.supports = sw.time("struts", progress, [&] {

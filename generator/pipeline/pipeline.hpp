@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "ceilings/hybrid.hpp"
 #include "core/geometry.hpp"
 #include "core/params.hpp"
 #include "job/job.hpp"
@@ -50,6 +51,9 @@ SizedTree grow_cheaper_tree(const ModelQuery& placed, const SupportTree& hung, c
 // (leaves hung clear of the support blockers), counted as estimate_slicer_cost counts it. It
 // keeps a reference to `placed` and copies of the rest.
 TreeCounter tree_counter(const ModelQuery& placed, const Params& p, const std::vector<Box3>& support_blockers = {});
+// The same with a tip under each of some feet (the hybrid's, ceilings/hybrid.hpp, tree/feet.hpp).
+FeetTreeCounter feet_tree_counter(const ModelQuery& placed, const Params& p,
+                                  const std::vector<Box3>& support_blockers = {});
 // Supports from a grown tree (and the ceiling walls beside it): struts in `omit` (indices into
 // `grown`) are pruned with their branches first. A tree already sized (grow_cheaper_tree) is sized
 // again only when struts are pruned; its estimate is kept unless struts are pruned.

@@ -67,6 +67,8 @@ clearance = 0.3; // [0:0.05:2]
 support_bridges = false;
 // Walls under low ceilings: rows at most this far apart (mm); 0: trees only
 ceiling_span = 3.4; // [0:0.1:5]
+// Hybrid under high ceilings: walls this tall on the tree (mm); 0: off
+hybrid_height = 1; // [0:0.5:10]
 // Supports stand on the bed only, routed around the model
 buildplate_only = false;
 
@@ -74,7 +76,7 @@ buildplate_only = false;
 // How this file was made: `clever-support regrow` reads these.
 cs_version = "0.1.0";
 cs_input = "examples/models/arches.stl";
-cs_input_path = "/work/wt-walls/examples/models/arches.stl";
+cs_input_path = "/work/wt-hybrid/examples/models/arches.stl";
 cs_input_sha256 = "3bbb7e131bebb3440a0cc49a79bf36d778545be85b70f672e9ceb1f5655fe307";
 cs_defines = [];
 cs_preset = "generic-0.4";

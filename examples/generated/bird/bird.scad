@@ -67,6 +67,8 @@ clearance = 0.3; // [0:0.05:2]
 support_bridges = false;
 // Walls under low ceilings: rows at most this far apart (mm); 0: trees only
 ceiling_span = 3.4; // [0:0.1:5]
+// Hybrid under high ceilings: walls this tall on the tree (mm); 0: off
+hybrid_height = 1; // [0:0.5:10]
 // Supports stand on the bed only, routed around the model
 buildplate_only = false;
 
@@ -74,7 +76,7 @@ buildplate_only = false;
 // How this file was made: `clever-support regrow` reads these.
 cs_version = "0.1.0";
 cs_input = "examples/models/bird.stl";
-cs_input_path = "/work/wt-walls/examples/models/bird.stl";
+cs_input_path = "/work/wt-hybrid/examples/models/bird.stl";
 cs_input_sha256 = "675ba0dfdd4bddc15ca8a0c273e66f3b30076687e4f097ef4405360d385153cf";
 cs_defines = [];
 cs_preset = "generic-0.4";

@@ -1,0 +1,54 @@
+// The hybrid under ceilings high over the model (issue #32, "a hybrid like Bambu's"): where walls
+// cannot stand on the bed or a level floor (ceilings/ceilings.hpp), short walls `hybrid_height`
+// tall hang just under the ceiling in the same rows and meander, and the tree carries them: a tip
+// stands under the middle of each piece's foot. The slicer then prints the top layers under the
+// ceiling as a few long lines (where a tree prints one island per tip), and the tree below grows
+// from fewer leaves (one per piece, pieces ceiling_span apart in rows ceiling_span apart, where
+// the sampling hangs one per sampling distance).
+//
+// Stage: ceilings (after the walls, on the samples they leave). The tree stage hangs the feet as
+// leaves (tree/feet.hpp); the pipeline drops the hybrid when the tree loses one of them.
+//
+//   support_hybrid(model, samples, p, tree_count, blockers) -> Ceilings{walls, rest, feet, ...}
+//     regions, rows, joins, tops  as for walls (lay_out_ceilings), the floor of every station
+//               `hybrid_height` under its top, where the fall below leaves room for a tip and a
+//               strut (hybrid_floor)
+//     pieces    each flat piece cut into pieces as long as `check` still finds a long top (a
+//               contact along it), each standing on one tip at the middle of its foot: `check`
+//               grounds a solid by its foot's middle; the printer bridges the foot from tip to
+//               tip (pieces at most twice that long, under 8 mm at the default sampling)
+//     feet      a piece whose tip does not fit (the model too near) is not built
+//     choice    per region by core/slicer_time: the pieces' lines over their height plus the tree
+//               for the samples they leave and their feet, against the region's own tree, on
+//               both routes
+//
+// Example: a 30 x 10 mm roof 20 mm over a slope, hybrid_height 3, span 3.4: 4 rows of 3 mm walls
+// under it, cut into pieces ~3.7-7 mm long, ~20 feet; the tree grows from those instead of ~48
+// samples.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "ceilings/ceilings.hpp"
+
+namespace cs {
+
+// The tree for some samples plus a tip under each foot (counted as TreeCounter counts it).
+using FeetTreeCounter = std::function<TreeCount(const std::vector<Sample>&, const std::vector<Vec3>& feet)>;
+
+// The hybrid on `samples` (those the walls left), none entering `support_blockers` (the user's,
+// and the walls' own boxes). Nothing when p.hybrid_height is 0.
+Ceilings support_hybrid(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
+                        const FeetTreeCounter& tree_count, const std::vector<Box3>& support_blockers = {});
+
+// Under a point `x` of a ceiling: the foot of a hybrid wall, hybrid_height and a gap below it,
+// where the model (or the bed) below leaves room under the foot for a tip and a strut to leave
+// it; else nothing.
+std::optional<double> hybrid_floor(const ModelQuery& model, const Vec3& x, const Params& p);
+
+// Where the tip under each piece stands: the middle of its foot.
+std::vector<Vec3> feet_of(const std::vector<CeilingWall>& pieces);
+
+}  // namespace cs
