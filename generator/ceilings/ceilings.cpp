@@ -343,17 +343,20 @@ RowPlan plan_rows(const ModelQuery& q, const Region& r, const std::vector<Sample
         for (const Run& w : runs) l += horizontal_distance(w.top.front(), w.top.back());
         return l;
     };
-    // The outer row on one side (`out` -1: low v, +1: high v), and its walls.
+    // The outer row on one side (`out` -1: low v, +1: high v), and its walls: stepped out a station
+    // at a time from just inside the outer samples while the row stays as long, at most the walls'
+    // reach and the inset past them.
     auto outer_row = [&](double sample_v, double out) {
-        const double inner = sample_v - out * inset;
-        std::vector<Run> best = walls_along(q, grid, samples, f, inner, u0, u1, p, overhang_nz);
+        double v = sample_v - out * inset;
+        std::vector<Run> best = walls_along(q, grid, samples, f, v, u0, u1, p, overhang_nz);
         const double need = row_length(best);
         const int steps = static_cast<int>(std::floor((wall_reach(p) + inset) / kStation));
-        for (int k = steps; k > 0 && need > 0; --k) {
-            auto runs = walls_along(q, grid, samples, f, inner + out * k * kStation, u0, u1, p, overhang_nz);
-            if (row_length(runs) >= need) return std::pair{inner + out * k * kStation, runs};
+        for (int k = 1; k <= steps && need > 0; ++k) {
+            auto runs = walls_along(q, grid, samples, f, sample_v - out * inset + out * k * kStation, u0, u1, p, overhang_nz);
+            if (row_length(runs) < need) break;
+            v = sample_v - out * inset + out * k * kStation, best = std::move(runs);
         }
-        return std::pair{inner, best};
+        return std::pair{v, best};
     };
     const double lo_v = coord(r.box.min, !along_x), hi_v = coord(r.box.max, !along_x);
     if (hi_v - lo_v - 2 * inset <= 0) {
@@ -546,13 +549,20 @@ Contacts wall_contacts(const ModelQuery& q, const std::vector<CeilingWall>& wall
 
 // Is x within `reach` of a contact of the walls, on the same stretch of surface (overhang.hpp's
 // `covers`, the sampling's own rule)?
-bool near_contact(const Contacts& c, const Vec3& x, double reach, const Params& p) {
-    const long rings = static_cast<long>(std::ceil((reach + kContactStep) / c.near.cell()));
-    return c.near.visit_near(x, rings, [&](std::size_t i) {
+// `hint`: a segment to ask first (the one that covered a point nearby), updated to the one found.
+bool near_contact(const Contacts& c, const Vec3& x, double reach, const Params& p, std::size_t* hint = nullptr) {
+    auto covered_by = [&](std::size_t i) {
         const auto& [a, b] = c.segments[i];
         const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
         const double t = l2 > 0 ? std::clamp(((x.x - a.x) * dx + (x.y - a.y) * dy) / l2, 0.0, 1.0) : 0.0;
         return covers(a + (b - a) * t, x, reach, p.critical_angle);
+    };
+    if (hint && *hint < c.segments.size() && covered_by(*hint)) return true;
+    const long rings = static_cast<long>(std::ceil((reach + kContactStep) / c.near.cell()));
+    return c.near.visit_near(x, rings, [&](std::size_t i) {
+        if (!covered_by(i)) return false;
+        if (hint) *hint = i;
+        return true;
     });
 }
 
@@ -714,9 +724,10 @@ private:
 bool walls_carry(JudgedSurface& surface, const Contacts& contacts, const Vec3& s, const Params& p) {
     const double reach = wall_reach(p), r = coverage_reach(p.sampling_distance);
     const double disc = r + kProbeCover * kProbeStepOfReach * r;  // every point within r has a probe in it
-    if (!near_contact(contacts, s, reach, p)) return false;
+    std::size_t hint = contacts.segments.size();  // the probes come in runs of neighbours
+    if (!near_contact(contacts, s, reach, p, &hint)) return false;
     return !surface.visit_near(s, disc, [&](const Vec3& x) {
-        return covers(s, x, disc, p.critical_angle) && !near_contact(contacts, x, reach, p);
+        return covers(s, x, disc, p.critical_angle) && !near_contact(contacts, x, reach, p, &hint);
     });
 }
 
@@ -727,6 +738,7 @@ struct Layout {
     std::vector<CeilingWall> pieces;
     Contacts tops;
     std::vector<Sample> left;
+    std::vector<std::size_t> carried;  // indices of the region's samples they carry
 };
 // Rows this share of twice the walls' reach apart hold the ceiling midway between them where the
 // walls hold it along a narrow line: a staircase down a slope is held at each piece's middle only,
@@ -794,6 +806,8 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
     near.min = near.min - Vec3{margin, margin, margin}, near.max = near.max + Vec3{margin, margin, margin};
     JudgedSurface surface(q.mesh(), kProbeStepOfReach * coverage_reach(p.sampling_distance), near, p.critical_angle);
     const double tight = std::min(p.ceiling_span, kTightRows * 2 * wall_reach(p));
+    // What the chosen regions' own walls carry: more walls only add contacts, so those stay carried.
+    std::vector<char> carried(samples.size(), 0);
     for (const Region& r : regions) {
         // Rows the span apart; where they leave samples to a tree, also `tight` apart (a slope's
         // staircase of short pieces), keeping the layout that leaves fewer (the first of equals).
@@ -810,7 +824,8 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
             if (l.pieces.empty()) continue;
             l.tops = wall_contacts(q, l.pieces, p);
             for (std::size_t i : r.samples)
-                if (!walls_carry(surface, l.tops, samples[i].p, p)) l.left.push_back(samples[i]);
+                if (walls_carry(surface, l.tops, samples[i].p, p)) l.carried.push_back(i);
+                else l.left.push_back(samples[i]);
             if (!best || l.left.size() < best->left.size()) best = std::move(l);
         }
         if (!best) continue;
@@ -838,15 +853,16 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         out.tree_cura_s += tree_cura, out.tree_prusa_s += tree_prusa;
         out.walls_cura_s += walls_cura, out.walls_prusa_s += walls_prusa;
         out.walls.insert(out.walls.end(), pieces.begin(), pieces.end());
+        for (std::size_t i : best->carried) carried[i] = 1;
     }
     if (out.walls.empty()) {
         out.rest = samples;
         return out;
     }
     const Contacts tops = wall_contacts(q, out.walls, p);
-    for (const Sample& s : samples) {
-        if (walls_carry(surface, tops, s.p, p)) ++out.covered;
-        else out.rest.push_back(s);
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        if (carried[i] || walls_carry(surface, tops, samples[i].p, p)) ++out.covered;
+        else out.rest.push_back(samples[i]);
     }
     return out;
 }
