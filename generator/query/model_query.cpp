@@ -72,6 +72,7 @@ struct ModelQuery::Impl {
     std::optional<RayIntersection> fallback(const K::Ray_3& ray) const;  // CGAL's tree's answer
     bool segment_hits(const K::Segment_3& segment) const;
     std::vector<const Triangle3*> crossed_faces(const K::Ray_3& ray) const;
+    Point closest_point(const Point& q) const;
 
 private:
     mutable std::atomic<std::size_t> asked_{0};
@@ -144,6 +145,47 @@ bool ModelQuery::Impl::segment_hits(const K::Segment_3& segment) const {
         return false;
     });
     return hit || (unsure && tree.do_intersect(segment));
+}
+
+// CGAL's tree.closest_point(q). CGAL starts from its search tree's nearest first corner of a face
+// (each face's reference point) and walks the boxes a sphere through its current point reaches,
+// taking each face's projection of q unless it is farther than the current point (so of two at
+// one distance, the later). Here the faces and first corners near q are all measured as CGAL
+// measures them: a point X strictly nearer than every other point among them is CGAL's answer
+// when a face projecting to X has a box that CGAL's sphere test reaches from the second nearest
+// point (it then reaches every box above it, from any current point, which is never nearer than
+// that). Otherwise (ties, and rounding at the box) CGAL's tree is asked.
+Point ModelQuery::Impl::closest_point(const Point& q) const {
+    const TriangleBvh* bvh = this->bvh();
+    if (!bvh || triangles.size() < 2) return tree.closest_point(q);
+    const auto distance2 = K().compute_squared_distance_3_object();
+    std::optional<Point> best, second;
+    double d_best = DBL_MAX, d_second = DBL_MAX;
+    std::size_t face = triangles.size();  // a face projecting to best, if any
+    auto offer = [&](const Point& c, std::size_t f) {
+        if (best && c == *best) {
+            if (face == triangles.size()) face = f;
+            return;
+        }
+        const double d = distance2(q, c);
+        if (!best || d < d_best) {
+            if (best) second = best, d_second = d_best;
+            best = c, d_best = d, face = f;
+        } else if (d < d_second) {
+            second = c, d_second = d;
+        }
+    };
+    bvh->near_point(
+        vec(q),
+        [&](std::uint32_t f) {
+            offer(K().construct_projected_point_3_object()(triangles[f], q), f);
+            offer(triangles[f].vertex(0), triangles.size());  // a possible starting point
+        },
+        [&] { return d_second; });
+    if (!best || face == triangles.size() || (second && !(d_best < d_second))) return tree.closest_point(q);
+    if (second && tree.traits().compare_distance_object()(q, triangles[face].bbox(), *second) != CGAL::SMALLER)
+        return tree.closest_point(q);
+    return *best;
 }
 
 // CGAL's tree.all_intersected_primitives(ray), in no particular order, by the same argument.
@@ -309,11 +351,8 @@ std::optional<RayHit> ModelQuery::first_hit_in_index(const Vec3& origin, const V
 
 bool ModelQuery::segment_hits(const Vec3& a, const Vec3& b) const {
     if (a == b) return false;
-    return remembered(memo_->mutex, memo_->segments, key(a, b), [&] {
-        const Vec3 from = in_index(a), to = in_index(b);
-        const K::Segment_3 segment(pt(from), pt(to));
-        return impl_->segment_hits(segment);
-    });
+    const Vec3 from = in_index(a), to = in_index(b);
+    return impl_->segment_hits(K::Segment_3(pt(from), pt(to)));
 }
 
 bool ModelQuery::triangle_hits(const Vec3& a, const Vec3& b, const Vec3& c) const {
@@ -322,12 +361,15 @@ bool ModelQuery::triangle_hits(const Vec3& a, const Vec3& b, const Vec3& c) cons
 }
 
 double ModelQuery::squared_distance(const Vec3& p) const {
-    return remembered(memo_->mutex, memo_->distances, key(p), [&] { return impl_->tree.squared_distance(pt(in_index(p))); });
+    return remembered(memo_->mutex, memo_->distances, key(p), [&] {
+        const Point q = pt(in_index(p));
+        // As CGAL's tree.squared_distance: the squared distance to its closest point.
+        return K().compute_squared_distance_3_object()(q, impl_->closest_point(q));
+    });
 }
 
 Vec3 ModelQuery::closest_point(const Vec3& p) const {
-    return remembered(memo_->mutex, memo_->closest, key(p),
-                      [&] { return out_of_index(vec(impl_->tree.closest_point(pt(in_index(p))))); });
+    return remembered(memo_->mutex, memo_->closest, key(p), [&] { return out_of_index(vec(impl_->closest_point(pt(in_index(p))))); });
 }
 
 bool ModelQuery::inside(const Vec3& p) const {

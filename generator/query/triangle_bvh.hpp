@@ -42,6 +42,11 @@ public:
         return along(origin, dir, -INFINITY, INFINITY, visit);
     }
 
+    // Calls visit(face) for every face whose box lies within squared distance bound() of p, nearer
+    // boxes first; bound() is asked again as the search goes, so the caller narrows it.
+    template <typename Visit, typename Bound>
+    void near_point(const Vec3& p, Visit&& visit, Bound&& bound) const;
+
     std::size_t size() const { return faces_.size(); }
 
 private:
@@ -60,6 +65,7 @@ private:
     // Parameter interval [t0, t1] of origin + t * dir inside the box, clipped to [lo, hi]; false if empty.
     template <typename Visit>
     bool along(const Vec3& o, const Vec3& d, double from, double to, Visit& visit) const;
+    static double squared_gap(const Box& b, const Vec3& p);
     static bool clip(const Box& b, const Vec3& o, const Vec3& d, const Vec3& inv, double& lo, double& hi);
 };
 
@@ -80,6 +86,44 @@ inline bool TriangleBvh::clip(const Box& b, const Vec3& o, const Vec3& d, const 
         if (lo > hi) return false;
     }
     return true;
+}
+
+inline double TriangleBvh::squared_gap(const Box& b, const Vec3& p) {
+    const double c[3] = {p.x, p.y, p.z};
+    double d2 = 0;
+    for (int k = 0; k < 3; ++k) {
+        const double g = c[k] < b.lo[k] ? b.lo[k] - c[k] : c[k] > b.hi[k] ? c[k] - b.hi[k] : 0;
+        d2 += g * g;
+    }
+    return d2;
+}
+
+template <typename Visit, typename Bound>
+void TriangleBvh::near_point(const Vec3& p, Visit&& visit, Bound&& bound) const {
+    if (nodes_.empty()) return;
+    // A box is skipped only when clearly beyond the bound (a relative 1e-12 above the rounding).
+    auto beyond = [&](double d2) { return d2 > bound() * (1 + 1e-12); };
+    struct Entry {
+        std::uint32_t node;
+        double d2;
+    };
+    Entry stack[128];
+    int top = 0;
+    stack[top++] = {0, squared_gap(nodes_[0].box, p)};
+    while (top > 0) {
+        const Entry e = stack[--top];
+        if (beyond(e.d2)) continue;
+        const Node& n = nodes_[e.node];
+        if (n.count == 0) {
+            Entry a{e.node + 1, squared_gap(nodes_[e.node + 1].box, p)}, b{n.first, squared_gap(nodes_[n.first].box, p)};
+            if (a.d2 < b.d2) std::swap(a, b);  // the nearer on top
+            stack[top++] = a;
+            stack[top++] = b;
+            continue;
+        }
+        for (std::uint32_t s = n.first; s < n.first + n.count; ++s)
+            if (!beyond(squared_gap(boxes_[s], p))) visit(faces_[s]);
+    }
 }
 
 template <typename Visit>

@@ -2,7 +2,7 @@
 // AABB tree alone: the tree is built here the way ModelQuery built it before, and asked the same
 // questions. Exactly means bit for bit: the face, the point and the distance of a ray's first hit
 // (where two faces tie or rounding decides, CGAL's answer is what the generator has always used),
-// every segment's and triangle's verdict, every inside verdict. The questions include the hard
+// every segment's verdict, every inside verdict, every closest point and squared distance. The questions include the hard
 // ones: points on the grid lines of an axis-aligned sponge, rays along its faces and edges.
 #include <gtest/gtest.h>
 
@@ -55,6 +55,8 @@ struct OldIndex {
         }
         return RayHit{q, distance(q, o), static_cast<std::size_t>(hit->second - triangles.begin())};
     }
+    Vec3 closest_point(const Vec3& p) const { return vec(tree.closest_point(pt(p))); }
+    double squared_distance(const Vec3& p) const { return tree.squared_distance(pt(p)); }
     bool segment_hits(const Vec3& a, const Vec3& b) const {
         return a != b && tree.do_intersect(K::Segment_3(pt(a), pt(b)));
     }
@@ -137,6 +139,9 @@ Counts expect_same_as_old(const Mesh& m, int n, bool on_grid, double side, std::
         const bool seg = q.segment_hits(p, r);
         EXPECT_EQ(seg, old.segment_hits(p, r)) << i;
         c.segments += seg;
+        const Vec3 near = q.closest_point(p), near_old = old.closest_point(p);
+        EXPECT_TRUE(same_bits(near.x, near_old.x) && same_bits(near.y, near_old.y) && same_bits(near.z, near_old.z)) << i;
+        EXPECT_TRUE(same_bits(q.squared_distance(p), old.squared_distance(p))) << i;
         const bool in = q.inside(p);
         EXPECT_EQ(in, old.inside(p)) << i;
         c.inside += in;
