@@ -450,9 +450,20 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
 // A run cut into pieces with a flat top and floor: each as long as the ceiling and floor above and
 // below it stay within half a layer, its top the lowest top and its floor the highest floor over
 // it. Neighbouring pieces share the station between them.
+// Strength: `check` judges each piece as a solid of its own, by its narrower side. Under a steep
+// ceiling a flat piece may be one station long (0.5 mm), narrower along the row than the
+// thickness the strength rule gave it for its height, and so too slender (the wheel at 80 mm in its
+// auto pose: 0.45 mm x 7.5 mm). So a piece goes on past where the ceiling steps, its top the lowest
+// over it, until it is as long as it is thick, while its floor stays flat (a piece may not hang over a
+// lower floor). One that cannot grow so long is not built: its samples stay with the tree
+// (the walls' contacts are found on the pieces built).
 std::vector<CeilingWall> flat_pieces(const Run& r, const Params& p) {
     std::vector<CeilingWall> out;
     const double flat = 0.5 * p.layer_height;
+    auto length = [&](std::size_t a, std::size_t b) { return horizontal_distance(r.top[a], r.top[b]); };
+    auto thickest = [&](std::size_t a, std::size_t b) {
+        return *std::max_element(r.thickness.begin() + a, r.thickness.begin() + b + 1);
+    };
     std::size_t i = 0;
     while (i + 1 < r.top.size()) {
         double top_lo = std::min(r.top[i].z, r.top[i + 1].z), top_hi = std::max(r.top[i].z, r.top[i + 1].z);
@@ -460,12 +471,16 @@ std::vector<CeilingWall> flat_pieces(const Run& r, const Params& p) {
         std::size_t k = i + 1;
         while (k + 1 < r.top.size()) {
             const double t = r.top[k + 1].z, fl = r.floor[k + 1];
-            if (std::max(top_hi, t) - std::min(top_lo, t) > flat || std::max(fl_hi, fl) - std::min(fl_lo, fl) > flat) break;
+            const bool floor_flat = std::max(fl_hi, fl) - std::min(fl_lo, fl) <= flat;
+            const bool top_flat = std::max(top_hi, t) - std::min(top_lo, t) <= flat;
+            const bool too_short = length(i, k) < thickest(i, k);
+            if (!floor_flat || (!top_flat && !too_short)) break;
             top_lo = std::min(top_lo, t), top_hi = std::max(top_hi, t), fl_lo = std::min(fl_lo, fl), fl_hi = std::max(fl_hi, fl);
             ++k;
         }
-        const double t = *std::max_element(r.thickness.begin() + i, r.thickness.begin() + k + 1);
-        out.push_back({{r.top[i].x, r.top[i].y, 0}, {r.top[k].x, r.top[k].y, 0}, fl_hi, top_lo, r.join, t});
+        const double t = thickest(i, k);
+        if (length(i, k) >= t)
+            out.push_back({{r.top[i].x, r.top[i].y, 0}, {r.top[k].x, r.top[k].y, 0}, fl_hi, top_lo, r.join, t});
         i = k;
     }
     return out;

@@ -310,6 +310,27 @@ TEST(CheckWalls, AWallsLongTopIsAContactAlongItsWholeLength) {
     EXPECT_EQ(check_supports(model, wall_mesh(fused), p, {}).fused_contacts, 1u);
 }
 
+// A roof climbing steeply along a row (its underside 3 -> 12 mm over 20 mm): the ceiling steps more
+// than half a layer at every station, so a flat piece would be one station long, narrower along
+// the row than the strength rule asks of a wall that tall; `check` judges each piece by its
+// narrower side (the wheel at 80 mm in its auto pose failed so, 0.45 mm x 7.5 mm). Every piece is
+// as long as it is thick, and the walls and tips together pass `check`'s strength rule.
+TEST(Ceilings, PiecesUnderASteepCeilingAreAsLongAsTheyAreThick) {
+    for (double climb : {0.3, 0.45}) {
+        const Mesh roof = bent_roof([&](double x, double) { return 1 + climb * x / 3; });
+        Walled w = walled(roof);
+        const std::string what = "climb " + std::to_string(climb);
+        ASSERT_FALSE(w.ceilings.walls.empty()) << what << ": not vacuous";
+        for (const CeilingWall& c : w.ceilings.walls)
+            EXPECT_GE(horizontal_distance(c.from, c.to), c.thickness - 1e-9) << what;
+        Mesh held = ideal_tips(w.model, w.ceilings.rest, w.p);
+        append(held, walls_mesh(w.ceilings.walls));
+        const CheckResult r = check_supports(w.model, held, w.p, {});
+        EXPECT_EQ(r.weak_bodies, 0u) << what << ": " << r.summary();
+        expect_walls_hold_what_they_take(w, what);
+    }
+}
+
 // A roof sloping both ways (one to three tenths along x and y): rows along x or y are staircases
 // of short pieces, each held at its middle only, so the rows stand close enough for a point midway
 // between two to be within reach of one; the walls then take nearly every sample, and hold them.
