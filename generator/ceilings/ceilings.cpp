@@ -90,14 +90,15 @@ struct Region {
 };
 
 // Samples that fall freely to the bed, joined into regions where lattice neighbours lie on the
-// same stretch of surface.
-std::vector<Region> free_regions(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p) {
+// same stretch of surface; none of those that `stay` with the tree.
+std::vector<Region> free_regions(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
+                                 const std::vector<char>& stay) {
     const double sd = p.sampling_distance, low = touching_space(p) + p.tip_length;
     std::vector<char> free(samples.size(), 0);
     XyGrid<std::size_t> grid(sd);
     for (std::size_t i = 0; i < samples.size(); ++i) {
         const Vec3& s = samples[i].p;
-        if (s.z < low || !floor_under(q, s, p)) continue;
+        if ((!stay.empty() && stay[i]) || s.z < low || !floor_under(q, s, p)) continue;
         free[i] = 1;
         grid.insert(s, i);
     }
@@ -754,7 +755,70 @@ struct Layout {
     Contacts tops;
     std::vector<Sample> left;
     std::vector<std::size_t> carried;  // indices of the region's samples they carry
+    std::vector<std::size_t> relied;   // left samples whose tips hold what a carried one held
 };
+
+// Of the region's samples the walls do not carry (`left`, indices), those whose every point the
+// walls leave another left sample's tip also holds: the walls and those tips hold all it held, so
+// it goes too (moved to `carried`), and the tips it leans on stay (`relied`: never let go after).
+// Under a tapering or sloping ceiling the rows stop short of the rims: a sample between a wall and
+// a rim then covers a little of the rim the walls do not reach, and kept it, though the rim's own
+// tips hold that. Interior samples first (fewest points left to tips). Each tip holds from where
+// it stands (`tip_at`: placement moves it aside), at the walls' reach.
+void release_held(JudgedSurface& surface, const Contacts& contacts, const std::vector<Sample>& samples,
+                  const TipAt& tip_at, std::vector<std::size_t>& left, std::vector<std::size_t>& carried,
+                  std::vector<std::size_t>& relied, const Params& p) {
+    if (left.size() < 2) return;
+    const double reach = wall_reach(p), r = coverage_reach(p.sampling_distance);
+    const double disc = r + kProbeCover * kProbeStepOfReach * r;
+    auto hold = [&](std::size_t i) { return tip_at ? tip_at(samples[i]) : samples[i].p; };
+    XyGrid<std::size_t> near(p.sampling_distance);
+    for (std::size_t k = 0; k < left.size(); ++k) near.insert(hold(left[k]), k);
+    // Each left sample's points the walls leave (as walls_carry finds them, from where its tip holds).
+    std::vector<std::vector<Vec3>> bare(left.size());
+    std::vector<std::size_t> order(left.size());
+    for (std::size_t k = 0; k < left.size(); ++k) {
+        order[k] = k;
+        const Vec3 h = hold(left[k]);
+        std::size_t hint = contacts.segments.size();
+        surface.visit_near(h, disc, [&](const Vec3& x) {
+            if (covers(h, x, disc, p.critical_angle) && !near_contact(contacts, x, reach, p, &hint)) bare[k].push_back(x);
+            return false;
+        });
+    }
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return bare[a].size() < bare[b].size(); });
+    std::vector<char> gone(left.size(), 0), pinned(left.size(), 0);
+    const long rings = static_cast<long>(std::ceil(reach / p.sampling_distance)) + 1;
+    for (std::size_t k : order) {
+        if (pinned[k]) continue;
+        std::vector<std::size_t> leans;
+        bool held = true;
+        for (const Vec3& x : bare[k]) {
+            std::optional<std::size_t> by;
+            near.visit_near(x, rings, [&](std::size_t j) {
+                if (j == k || gone[j] || !covers(hold(left[j]), x, reach, p.critical_angle)) return false;
+                if (!by || (pinned[j] && !pinned[*by])) by = j;
+                return pinned[j] != 0;
+            });
+            if (!by) {
+                held = false;
+                break;
+            }
+            if (!pinned[*by]) leans.push_back(*by), pinned[*by] = 2;  // tentatively: the next points prefer it
+        }
+        for (std::size_t j : leans)
+            if (pinned[j] == 2) pinned[j] = held ? 1 : 0;
+        if (held) gone[k] = 1;
+    }
+    std::vector<std::size_t> kept;
+    for (std::size_t k = 0; k < left.size(); ++k) {
+        if (gone[k]) carried.push_back(left[k]);
+        else kept.push_back(left[k]);
+        if (pinned[k]) relied.push_back(left[k]);
+    }
+    std::sort(carried.begin(), carried.end());
+    left = std::move(kept);
+}
 // Rows this share of twice the walls' reach apart hold the ceiling midway between them where the
 // walls hold it along a narrow line: a staircase down a slope is held at each piece's middle only,
 // the middles up to a piece (a millimetre or so) apart along the row, so a point midway is a little
@@ -787,28 +851,29 @@ bool ceilings_laid_out(const Params& p) {
 }
 
 Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
-                          const TreeCounter& tree_count, const std::vector<Box3>& blockers, double most_left) {
+                          const TreeCounter& tree_count, const std::vector<Box3>& blockers, double most_left,
+                          const TipAt& tip_at) {
     Params walls = p;
     walls.hybrid_height = 0;  // walls stand on the bed or a floor (the hybrid: support_hybrid)
     return lay_out_ceilings(q, samples, walls, [](std::vector<CeilingWall> pieces) { return pieces; },
                             [&](const std::vector<Sample>& s, const std::vector<CeilingWall>&) {
                                 return s.empty() ? TreeCount{} : tree_count(s);
                             },
-                            blockers, most_left);
+                            blockers, most_left, tip_at);
 }
 
 Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
                           const PiecesRule& finish, const PiecesTreeCounter& tree_count, const std::vector<Box3>& blockers,
-                          double most_left) {
+                          double most_left, const TipAt& tip_at, const std::vector<char>& stay) {
     Ceilings out;
     if (!ceilings_laid_out(p)) {
-        out.rest = samples;
+        out.rest = samples, out.stay = stay;
         return out;
     }
     const double overhang_nz = -std::sin(deg_to_rad(p.critical_angle));
-    const std::vector<Region> regions = free_regions(q, samples, p);
+    const std::vector<Region> regions = free_regions(q, samples, p, stay);
     if (regions.empty()) {
-        out.rest = samples;
+        out.rest = samples, out.stay = stay;
         return out;
     }
     // The surface a sample near the walls may cover: around every region, as far as a sample
@@ -822,7 +887,8 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
     JudgedSurface surface(q.mesh(), kProbeStepOfReach * coverage_reach(p.sampling_distance), near, p.critical_angle);
     const double tight = std::min(p.ceiling_span, kTightRows * 2 * wall_reach(p));
     // What the chosen regions' own walls carry: more walls only add contacts, so those stay carried.
-    std::vector<char> carried(samples.size(), 0);
+    std::vector<char> carried(samples.size(), 0), relied = stay;
+    relied.resize(samples.size(), 0);
     for (const Region& r : regions) {
         // Rows the span apart; where they leave samples to a tree, also `tight` apart (a slope's
         // staircase of short pieces), keeping the layout that leaves fewer (the first of equals).
@@ -838,9 +904,12 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
             l.pieces = finish(std::move(l.pieces));
             if (l.pieces.empty()) continue;
             l.tops = wall_contacts(q, l.pieces, p);
+            std::vector<std::size_t> left;
             for (std::size_t i : r.samples)
                 if (walls_carry(surface, l.tops, samples[i].p, p)) l.carried.push_back(i);
-                else l.left.push_back(samples[i]);
+                else left.push_back(i);
+            release_held(surface, l.tops, samples, tip_at, left, l.carried, l.relied, p);
+            for (std::size_t i : left) l.left.push_back(samples[i]);
             if (!best || l.left.size() < best->left.size()) best = std::move(l);
         }
         if (!best) continue;
@@ -869,15 +938,16 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         out.walls_cura_s += walls_cura, out.walls_prusa_s += walls_prusa;
         out.walls.insert(out.walls.end(), pieces.begin(), pieces.end());
         for (std::size_t i : best->carried) carried[i] = 1;
+        for (std::size_t i : best->relied) relied[i] = 1;
     }
     if (out.walls.empty()) {
-        out.rest = samples;
+        out.rest = samples, out.stay = stay;
         return out;
     }
     const Contacts tops = wall_contacts(q, out.walls, p);
     for (std::size_t i = 0; i < samples.size(); ++i) {
-        if (carried[i] || walls_carry(surface, tops, samples[i].p, p)) ++out.covered;
-        else out.rest.push_back(samples[i]);
+        if (carried[i] || (!relied[i] && walls_carry(surface, tops, samples[i].p, p))) ++out.covered;
+        else out.rest.push_back(samples[i]), out.stay.push_back(relied[i]);
     }
     return out;
 }

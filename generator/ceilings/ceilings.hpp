@@ -39,7 +39,10 @@
 //               middle, with the model over its nearest corner); the others stay with the tree
 //               (tips at the ends and rims the walls do not reach). So `check` finds every point
 //               such a sample held within its reach of a wall; steep undersides `check` does not
-//               judge (a bore's sides) ask nothing of the walls.
+//               judge (a bore's sides) ask nothing of the walls. A sample the walls leave goes
+//               too where every point it covers that the walls leave lies within the walls' reach
+//               of another left sample's tip (a rim's tips hold the sliver of rim past the last
+//               row); the tips so leaned on stay with the tree (Ceilings::stay).
 //
 // Example: a 50 x 10 mm roof 5 mm over the bed, span 3.4 mm: 4 rows of 50 mm, 3 joins, one
 // meander; the roof's 80 samples all go to the walls.
@@ -81,6 +84,8 @@ using TreeCounter = std::function<TreeCount(const std::vector<Sample>&)>;
 struct Ceilings {
     std::vector<CeilingWall> walls;
     std::vector<Sample> rest;       // samples left to the tree, in the input's order
+    std::vector<char> stay;         // per sample of `rest`: its tip holds what the walls let go of
+                                    // (release_held), so it stays with the tree (empty: none)
     std::vector<Vec3> feet;         // the hybrid's: where a tip of the tree carries a piece's foot
     std::size_t regions = 0;        // regions given walls
     std::size_t covered = 0;        // samples the walls carry
@@ -95,12 +100,16 @@ struct Ceilings {
 // model gave walls left more than 0.37 of them.
 constexpr double kMostLeftToPrice = 0.5;
 
+// Where the tip hung for a sample holds the overhang up (its top, at the sample's height: placement
+// moves a tip aside from its sample); empty: at the sample.
+using TipAt = std::function<Vec3(const Sample&)>;
+
 // A region whose walls would enter one of the user's `support_blockers` (placed-model coordinates)
 // keeps its tree (the tree routes around blockers; a wall cannot). `most_left`: kMostLeftToPrice
 // (tests of the walls' geometry pass 1 to price every region).
 Ceilings support_ceilings(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
                           const TreeCounter& tree_count, const std::vector<Box3>& support_blockers = {},
-                          double most_left = kMostLeftToPrice);
+                          double most_left = kMostLeftToPrice, const TipAt& tip_at = {});
 
 // The layout support_ceilings and support_hybrid (ceilings/hybrid.hpp) share: regions of samples
 // whose fall `floor_under` allows (p.hybrid_height > 0: room under a foot that far below the
@@ -113,7 +122,8 @@ using PiecesRule = std::function<std::vector<CeilingWall>(std::vector<CeilingWal
 using PiecesTreeCounter = std::function<TreeCount(const std::vector<Sample>&, const std::vector<CeilingWall>&)>;
 Ceilings lay_out_ceilings(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
                           const PiecesRule& finish, const PiecesTreeCounter& tree_count,
-                          const std::vector<Box3>& support_blockers, double most_left);
+                          const std::vector<Box3>& support_blockers, double most_left, const TipAt& tip_at = {},
+                          const std::vector<char>& stay = {});
 
 // Are walls laid out at all with these parameters: a span, rows within reach of each other, a tree?
 bool ceilings_laid_out(const Params& p);

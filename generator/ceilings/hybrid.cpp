@@ -63,10 +63,11 @@ std::vector<Vec3> feet_of(const std::vector<CeilingWall>& pieces) {
 }
 
 Ceilings support_hybrid(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
-                        const FeetTreeCounter& tree_count, const std::vector<Box3>& blockers) {
+                        const FeetTreeCounter& tree_count, const std::vector<Box3>& blockers, const TipAt& tip_at,
+                        const std::vector<char>& stay) {
     if (p.hybrid_height <= 0) {
         Ceilings none;
-        none.rest = samples;
+        none.rest = samples, none.stay = stay;
         return none;
     }
     Ceilings out = lay_out_ceilings(
@@ -74,7 +75,7 @@ Ceilings support_hybrid(const ModelQuery& q, const std::vector<Sample>& samples,
         [&](const std::vector<Sample>& s, const std::vector<CeilingWall>& pieces) {
             return s.empty() && pieces.empty() ? TreeCount{} : tree_count(s, feet_of(pieces));
         },
-        blockers, kMostLeftToPrice);
+        blockers, kMostLeftToPrice, tip_at, stay);
     out.feet = feet_of(out.walls);
     return out;
 }

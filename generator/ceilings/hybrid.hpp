@@ -41,7 +41,8 @@ using FeetTreeCounter = std::function<TreeCount(const std::vector<Sample>&, cons
 // The hybrid on `samples` (those the walls left), none entering `support_blockers` (the user's,
 // and the walls' own boxes). Nothing when p.hybrid_height is 0.
 Ceilings support_hybrid(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
-                        const FeetTreeCounter& tree_count, const std::vector<Box3>& support_blockers = {});
+                        const FeetTreeCounter& tree_count, const std::vector<Box3>& support_blockers = {},
+                        const TipAt& tip_at = {}, const std::vector<char>& stay = {});
 
 // Under a point `x` of a ceiling: the foot of a hybrid wall, hybrid_height and a gap below it,
 // where the model (or the bed) below leaves room under the foot for a tip and a strut to leave

@@ -171,7 +171,8 @@ namespace {
 // The hybrid (ceilings/hybrid.hpp) under what the walls left, kept clear of the walls (their
 // boxes, a side clearance around them, join the user's blockers): the walls and the hybrid's
 // pieces together, the samples neither carries, and the hybrid's feet.
-Ceilings with_hybrid(const ModelQuery& q, const Ceilings& walls, const Params& p, const std::vector<Box3>& user_blockers) {
+Ceilings with_hybrid(const ModelQuery& q, const Ceilings& walls, const Params& p, const std::vector<Box3>& user_blockers,
+                     const TipAt& tip_at) {
     if (p.hybrid_height <= 0) return walls;
     std::vector<Box3> blockers = user_blockers;
     for (const CeilingWall& w : walls.walls) {
@@ -181,11 +182,12 @@ Ceilings with_hybrid(const ModelQuery& q, const Ceilings& walls, const Params& p
         b.max = {std::max(w.from.x, w.to.x) + side, std::max(w.from.y, w.to.y) + side, w.top};
         blockers.push_back(b);
     }
-    Ceilings hybrid = support_hybrid(q, walls.rest, p, feet_tree_counter(q, p, user_blockers), blockers);
+    Ceilings hybrid = support_hybrid(q, walls.rest, p, feet_tree_counter(q, p, user_blockers), blockers, tip_at,
+                                     walls.stay);
     if (hybrid.walls.empty()) return walls;
     Ceilings out = walls;
     out.walls.insert(out.walls.end(), hybrid.walls.begin(), hybrid.walls.end());
-    out.rest = std::move(hybrid.rest);
+    out.rest = std::move(hybrid.rest), out.stay = std::move(hybrid.stay);
     out.feet = std::move(hybrid.feet);
     out.regions += hybrid.regions, out.covered += hybrid.covered;
     out.tree_cura_s += hybrid.tree_cura_s, out.tree_prusa_s += hybrid.tree_prusa_s;
@@ -324,6 +326,23 @@ std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samp
     for (const auto& s : samples)
         if (!std::binary_search(carried.begin(), carried.end(), s.p, before)) out.push_back(s.p);
     return out;
+}
+
+// Where the tip hung for a sample holds the overhang up, as coverers() counts it: a leaf's tip top
+// or a pillar's top at the sample's height; the sample itself where it got neither.
+TipAt tips_of(const SupportTree& hung) {
+    auto before = [](const std::pair<Vec3, Vec3>& a, const std::pair<Vec3, Vec3>& b) {
+        return std::tie(a.first.x, a.first.y, a.first.z) < std::tie(b.first.x, b.first.y, b.first.z);
+    };
+    std::vector<std::pair<Vec3, Vec3>> at;
+    for (const auto& n : hung.nodes)
+        if (n.kind == NodeKind::Leaf) at.push_back({n.contact, {n.tip.x, n.tip.y, n.contact.z}});
+    for (const auto& pl : hung.pillars) at.push_back({pl.sample, {pl.top.x, pl.top.y, pl.sample.z}});
+    std::sort(at.begin(), at.end(), before);
+    return [at = std::move(at), before](const Sample& s) {
+        const auto it = std::lower_bound(at.begin(), at.end(), std::pair{s.p, s.p}, before);
+        return it != at.end() && !before({s.p, s.p}, *it) ? it->second : s.p;
+    };
 }
 
 // The samples of the leaves hung in `hung` that the sweep lost in `grown` (grown from `hung`:
@@ -576,8 +595,10 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     // the hybrid's short walls (on the tree) take theirs; the tree grows from the rest.
     Ceilings walls_only;
     Ceilings ceilings = sw.time("ceilings", progress, [&] {
-        walls_only = support_ceilings(*query, r.samples.samples, p, tree_counter(*query, p, blockers), blockers);
-        return with_hybrid(*query, walls_only, p, blockers);
+        const TipAt tip_at = tips_of(hung);
+        walls_only = support_ceilings(*query, r.samples.samples, p, tree_counter(*query, p, blockers), blockers,
+                                      kMostLeftToPrice, tip_at);
+        return with_hybrid(*query, walls_only, p, blockers, tip_at);
     });
     auto leaves_of = [&](const Ceilings& c) {
         return c.walls.empty() ? SupportTree{} : hang_feet(hang_leaves(*query, c.rest, p, blockers), c.feet, p);

@@ -343,3 +343,38 @@ TEST(Ceilings, ARoofSlopingBothWaysGetsRowsCloseEnoughForItsStaircases) {
         expect_walls_hold_what_they_take(w, what);
     }
 }
+
+// A blade-like roof: a plate whose floor plan tapers (x 0..20, y 0..w(x) with w 15 -> 7 mm in
+// 1 mm steps) between two posts, its underside sloping across the rows (z = 3 (1 + 0.04 y)). Rows
+// along x stop short of the tapering rim, so a sample between the last row and the rim covers a
+// little of the rim the walls do not reach, while the rim's own samples cover it too. Those go to
+// the walls (the rim's tips then lean on: `relied`); every sample left is on or beside the rim, and
+// `check` finds held all it finds held with a tip at every sample.
+TEST(Ceilings, SamplesBetweenTheWallsAndARimTheRimsTipsHoldGoToTheWalls) {
+    std::vector<double> xs{-2}, ys;
+    for (int i = 0; i <= 22; ++i) xs.push_back(i);
+    for (int j = 0; j <= 15; ++j) ys.push_back(j);
+    test::CellGrid g(xs, ys, {0, 3, 5});
+    auto width = [](double x) { return 15.0 - 2 * std::floor(x / 5); };  // 15, 13, 11, 9 mm
+    g.fill({-2, 0, 0}, {0, 15, 5});
+    g.fill({20, 0, 0}, {22, 15, 5});
+    for (int i = 0; i < 20; ++i) g.fill({double(i), 0, 3}, {i + 1.0, width(i), 5});
+    Mesh roof = g.mesh();
+    for (auto& v : roof.vertices) v.z *= 1 + 0.04 * v.y;
+    Walled w = walled(roof);
+    ASSERT_FALSE(w.ceilings.walls.empty());
+    // Horizontal distance from a point of the plan to the roof's rim (its open sides: y = 0 and
+    // the tapering edge; the posts hold the ends).
+    auto to_rim = [&](const Vec3& s) {
+        double d = s.y;
+        for (int i = 0; i < 20; ++i)
+            d = std::min(d, std::hypot(std::max({0.0, i - s.x, s.x - i - 1}), s.y - width(i)));
+        return d;
+    };
+    const double r = coverage_reach(w.p.sampling_distance);
+    std::size_t inner = 0;
+    for (const Sample& s : w.ceilings.rest) inner += to_rim(s.p) > r;
+    EXPECT_EQ(inner, 0u) << "of " << w.ceilings.rest.size() << " samples left to the tree";
+    EXPECT_LT(w.ceilings.rest.size(), w.samples.samples.size() / 2);
+    expect_walls_hold_what_they_take(w, "tapering roof");
+}
