@@ -42,7 +42,8 @@
 //               judge (a bore's sides) ask nothing of the walls. A sample the walls leave goes
 //               too where every point it covers that the walls leave lies within the walls' reach
 //               of another left sample's tip (a rim's tips hold the sliver of rim past the last
-//               row); the tips so leaned on stay with the tree (Ceilings::stay).
+//               row); the tips so leaned on stay with the tree (Ceilings::stay). Walls only, not
+//               the hybrid (ceilings.cpp says why).
 //
 // Example: a 50 x 10 mm roof 5 mm over the bed, span 3.4 mm: 4 rows of 50 mm, 3 joins, one
 // meander; the roof's 80 samples all go to the walls.
