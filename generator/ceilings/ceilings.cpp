@@ -773,6 +773,7 @@ struct Layout {
     std::vector<Sample> left;
     std::vector<std::size_t> carried;  // indices of the region's samples they carry
     std::vector<std::size_t> relied;   // left samples whose tips hold what a carried one held
+    std::vector<std::size_t> released; // carried samples release_held let go (of `carried`)
 };
 
 // Of the region's samples the walls do not carry (`left`, indices), those whose every point the
@@ -784,7 +785,8 @@ struct Layout {
 // it stands (`tip_at`: placement moves it aside), at the walls' reach.
 void release_held(JudgedSurface& surface, const Contacts& contacts, const std::vector<Sample>& samples,
                   const TipAt& tip_at, std::vector<std::size_t>& left, std::vector<std::size_t>& carried,
-                  std::vector<std::size_t>& relied, const CarryReach& reach, const Params& p) {
+                  std::vector<std::size_t>& relied, std::vector<std::size_t>& released, const CarryReach& reach,
+                  const Params& p) {
     if (left.size() < 2) return;
     auto hold = [&](std::size_t i) { return tip_at ? tip_at(samples[i]) : samples[i].p; };
     XyGrid<std::size_t> near(p.sampling_distance);
@@ -827,7 +829,7 @@ void release_held(JudgedSurface& surface, const Contacts& contacts, const std::v
     }
     std::vector<std::size_t> kept;
     for (std::size_t k = 0; k < left.size(); ++k) {
-        if (gone[k]) carried.push_back(left[k]);
+        if (gone[k]) carried.push_back(left[k]), released.push_back(left[k]);
         else kept.push_back(left[k]);
         if (pinned[k]) relied.push_back(left[k]);
     }
@@ -927,7 +929,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
             // Walls only: the hybrid's pieces each add a foot to the tree, and its regions are
             // priced against their own tree alone; with this the wheel at 80 mm got a hybrid its
             // whole tree printed slower (Cura 29.4 -> 32.4 min, PrusaSlicer 21.8 -> 23.5).
-            if (p.hybrid_height <= 0) release_held(surface, l.tops, samples, tip_at, left, l.carried, l.relied, carry, p);
+            if (p.hybrid_height <= 0) release_held(surface, l.tops, samples, tip_at, left, l.carried, l.relied, l.released, carry, p);
             for (std::size_t i : left) l.left.push_back(samples[i]);
             if (!best || l.left.size() < best->left.size()) best = std::move(l);
         }
@@ -958,6 +960,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         out.walls.insert(out.walls.end(), pieces.begin(), pieces.end());
         for (std::size_t i : best->carried) carried[i] = 1;
         for (std::size_t i : best->relied) relied[i] = 1;
+        for (std::size_t i : best->released) out.released.push_back(samples[i].p);
     }
     if (out.walls.empty()) {
         out.rest = samples, out.stay = stay;

@@ -87,6 +87,7 @@ struct Ceilings {
     std::vector<Sample> rest;       // samples left to the tree, in the input's order
     std::vector<char> stay;         // per sample of `rest`: its tip holds what the walls let go of
                                     // (release_held), so it stays with the tree (empty: none)
+    std::vector<Vec3> released;     // samples the walls carry only with those tips (release_held)
     std::vector<Vec3> feet;         // the hybrid's: where a tip of the tree carries a piece's foot
     std::size_t regions = 0;        // regions given walls
     std::size_t covered = 0;        // samples the walls carry

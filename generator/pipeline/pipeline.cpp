@@ -358,6 +358,15 @@ TipAt tips_of(const SupportTree& hung) {
     };
 }
 
+// Is one of the tips the walls lean on (Ceilings::stay: they hold what the walls let go of) among
+// the `lost` samples?
+bool leaned_on_lost(const Ceilings& c, const std::vector<Vec3>& lost) {
+    for (std::size_t i = 0; i < c.stay.size() && i < c.rest.size(); ++i)
+        if (c.stay[i] && std::any_of(lost.begin(), lost.end(), [&](const Vec3& x) { return distance(x, c.rest[i].p) == 0; }))
+            return true;
+    return false;
+}
+
 // The samples of the leaves hung in `hung` that the sweep lost in `grown` (grown from `hung`:
 // its first nodes are those leaves, in order).
 std::vector<Vec3> lost_samples(const SupportTree& hung, const SupportTree& grown) {
@@ -630,7 +639,10 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     auto grow = [&] {
         SizedTree first = grow_cheaper_tree(*query, *leaves, p, blockers);
         if (first.tree.stats.dropped <= leaves->stats.dropped) return first;
-        const auto held = coverers(first.tree, r.samples.samples, lost_samples(*leaves, first.tree));
+        std::vector<Vec3> lost = lost_samples(*leaves, first.tree);
+        // A tip the walls leaned on, lost: the samples it held with them hold nothing either.
+        if (leaned_on_lost(ceilings, lost)) lost.insert(lost.end(), ceilings.released.begin(), ceilings.released.end());
+        const auto held = coverers(first.tree, r.samples.samples, lost);
         auto more = samples_beyond_reach(r.model, oo, *query, r.samples, held, blockers, p);
         if (more.empty()) return first;
         SupportTree more_leaves = hang_more_leaves(*query, *leaves, more, p, blockers);
