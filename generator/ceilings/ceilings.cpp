@@ -280,6 +280,7 @@ struct RegionWalls {
     std::vector<Run> walls;
     double length = 0;        // of all walls, mm
     std::size_t pieces = 0;   // separate meanders (islands per layer)
+    std::size_t turned = 0;   // joins placed at the other end than the meander's (prefer_near)
     double height = 0;        // mean top height
 };
 
@@ -456,6 +457,7 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
                         out.walls.push_back(*w);
                         joined[j][a] = joined[j + 1][b] = 1;
                         ++joins;
+                        if (turned && end_tried == 0) ++out.turned;
                         end_tried = 2;  // placed: the other end is not tried
                         break;
                     }
@@ -950,6 +952,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
             l.span = span;
             l.w = region_walls(q, plan, samples, p, overhang_nz, span, prefer_near);
             if (l.w.walls.empty() || enters_blocker(l.w.walls, blockers, p)) return std::nullopt;
+            if (prefer_near && l.w.turned == 0) return std::nullopt;  // the meander again
             for (const Run& run : l.w.walls)
                 for (auto& piece : flat_pieces(run, p)) l.pieces.push_back(piece);
             l.pieces = finish(std::move(l.pieces));
