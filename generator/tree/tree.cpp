@@ -349,10 +349,38 @@ private:
         // Nothing fits here. First undo what was joined into this node, so the branches above try
         // again elsewhere (a merge made a node too wide for where it hangs); after that, break up
         // the branches above it: each leaf goes down again alone. A leaf that cannot get down alone
-        // is dropped rather than printed fused into the model; the report counts the samples lost
-        // and `check` judges whether their neighbours still cover them.
+        // stands on a steep face if its tip fits there, else it is dropped rather than printed
+        // fused into the model; the report counts the samples lost and `check` judges whether
+        // their neighbours still cover them.
         if (undo_joins(id)) return;
+        if (stand_on_steep_face(id)) return;
         release_branches(id);
+    }
+
+    // The last way down of a node going down alone (released from a dead end twice): a model face
+    // steeper than a tip stands on by choice (kTreeTuning.stand_on_slope_deg), if the contact's
+    // tip fits on it as the struts stage builds it (contact_tip_is_clear: its foot on the slope,
+    // no corner in the model) and the strut reaches it with the z gap's air, as a tight landing
+    // (take_tight) keeps it. Without it a face a fraction of a degree past that slope loses the
+    // leaf, and the overhang it holds, though a tip stands there as on the slope itself:
+    // wall_rack in its auto pose, a shelf's top and lip 45.1-45.2 deg steep under the keyholes,
+    // the lip barring every other way down. Only where the leaf was lost: no other tree changes.
+    bool stand_on_steep_face(int id) {
+        if (!books_[id].alone) return false;
+        std::vector<Candidate> cands;
+        collect_contacts(cx_, t_.nodes[id].p, INFINITY, nullptr, nullptr, cands);
+        std::erase_if(cands, [](const Candidate& c) { return c.type != Target::SteepModel; });
+        by_cost(cands);
+        for (const Candidate& c : cands) {
+            if (sweep_meets_boxes(c.point, c.contact, bottom_width(id, c.point), 0, support_blockers_) ||
+                !contact_tip_is_clear(model_, p_, c.point, c.contact, bottom_width(id, c.point)) ||
+                !clear(id, c.point, p_.gap, true))
+                continue;
+            ++t_.stats.tight;
+            accept(id, c);
+            return true;
+        }
+        return false;
     }
 
     // Takes the cheapest clear strut down from node `id`, a bend, or a tight fit; false if none.

@@ -359,6 +359,50 @@ TEST(GrowTree, ADeadEndLosesOnlyTheLeavesThatCannotGetDownAlone) {
         << st.touching << " " << st.internal << " " << st.bridged << " " << g->tree.pillars.size();
 }
 
+TEST(GrowTree, ALeafWhoseOnlyLandingIsJustSteeperThanATipStandsOnStandsOnIt) {
+    // bench/validation/wall_rack in the pose --orient auto chose (its rotation, as the report gave
+    // it), without the keyholes and hooks: the back plate leans back, its front a 45 deg underside
+    // over the shelf, whose top and the lip's inner face are both 0.1-0.2 deg steeper than the
+    // slope a tip stands on by choice (kTreeTuning.stand_on_slope_deg), and the lip bars the way
+    // out. The leaf of a sample on the plate 3.3 mm above the shelf (where a keyhole's rim is) has
+    // no other landing; a tip fits on those faces all the same. It was lost, and `check` found the
+    // keyhole's rim beyond reach.
+    cs::test::CellGrid g({-35, 35}, {-4, 0, 22, 24}, {0, 38, 40.5, 45.5, 55});
+    g.fill({-35, -4, 0}, {35, 0, 55});        // the plate
+    g.fill({-35, 0, 38}, {35, 24, 40.5});     // the shelf
+    g.fill({-35, 22, 40.5}, {35, 24, 45.5});  // its lip
+    Mesh m = g.mesh();
+    const double R[3][3] = {{0.9971693787713378, 0.028738299285209587, -0.06947906299726585},
+                            {0.028738299285209587, 0.7082301802009033, 0.705396428972241},
+                            {0.06947906299726585, -0.705396428972241, 0.705399558972241}};
+    auto turn = [&](const Vec3& v) {
+        return Vec3{R[0][0] * v.x + R[0][1] * v.y + R[0][2] * v.z, R[1][0] * v.x + R[1][1] * v.y + R[1][2] * v.z,
+                    R[2][0] * v.x + R[2][1] * v.y + R[2][2] * v.z};
+    };
+    for (auto& v : m.vertices) v = turn(v);
+    double low = INFINITY;
+    for (const auto& v : m.vertices) low = std::min(low, v.z);
+    for (auto& v : m.vertices) v.z -= low;
+    const Vec3 lift{0, 0, low};
+    const Vec3 sample = turn({-26.16, 0, 43.83}) - lift;  // on the plate's front, 3.3 mm above the shelf
+    const Params p;
+    ModelQuery q(m);
+    const SupportTree t = grow_tree(q, std::vector<Sample>{{sample, SampleKind::Edge}}, p);
+    EXPECT_EQ(t.stats.dropped, 0u) << "the leaf was lost";
+    EXPECT_EQ(count_kind(t, NodeKind::Leaf), 1u);
+    ASSERT_EQ(count_kind(t, NodeKind::ModelContact), 1u);
+    for (const Node& n : t.nodes)
+        if (n.kind == NodeKind::ModelContact) {
+            // In the trough: on the shelf's top or the lip's inner face (a tip's foot stands a
+            // little above where its axis meets a slope).
+            const double height = dot(n.contact + lift, turn({0, 0, 1})), out = dot(n.contact + lift, turn({0, 1, 0}));
+            EXPECT_GT(height, 40.5 - 1e-6);
+            EXPECT_LT(height, 45.5);
+            EXPECT_GT(out, 0);
+            EXPECT_LT(out, 22 + 0.5);
+        }
+}
+
 // The coverage top-up judges where tips stand from hang_leaves, before the tree grows: that is
 // only sound if the grown tree's leaves and pillars are exactly the hung ones.
 TEST(HangLeaves, AreTheLeavesAndPillarsTheTreeGrowsFrom) {
