@@ -565,15 +565,16 @@ Contacts wall_contacts(const ModelQuery& q, const std::vector<CeilingWall>& wall
 // Is x within `reach` of a contact of the walls, on the same stretch of surface (overhang.hpp's
 // `covers`, the sampling's own rule)?
 // `hint`: a segment to ask first (the one that covered a point nearby), updated to the one found.
-bool near_contact(const Contacts& c, const Vec3& x, double reach, const Params& p, std::size_t* hint = nullptr) {
+// `reach`: Cover(the reach, the critical angle).
+bool near_contact(const Contacts& c, const Vec3& x, const Cover& reach, std::size_t* hint = nullptr) {
     auto covered_by = [&](std::size_t i) {
         const auto& [a, b] = c.segments[i];
         const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
         const double t = l2 > 0 ? std::clamp(((x.x - a.x) * dx + (x.y - a.y) * dy) / l2, 0.0, 1.0) : 0.0;
-        return covers(a + (b - a) * t, x, reach, p.critical_angle);
+        return reach(a + (b - a) * t, x);
     };
     if (hint && *hint < c.segments.size() && covered_by(*hint)) return true;
-    const long rings = static_cast<long>(std::ceil((reach + kContactStep) / c.near.cell()));
+    const long rings = static_cast<long>(std::ceil((reach.reach + kContactStep) / c.near.cell()));
     return c.near.visit_near(x, rings, [&](std::size_t i) {
         if (!covered_by(i)) return false;
         if (hint) *hint = i;
@@ -629,7 +630,7 @@ public:
         for (long i = points_.index(c.x - radius); i <= points_.index(c.x + radius); ++i)
             for (long j = points_.index(c.y - radius); j <= points_.index(c.y + radius); ++j)
                 for (const Vec3& x : cell(i, j))
-                    if (horizontal_distance(x, c) <= radius && visit(x)) return true;
+                    if (within_reach(x, c, radius) && visit(x)) return true;
         return false;
     }
 
@@ -656,7 +657,17 @@ private:
         auto inside_cell = [&](const Vec3& x) { return points_.index(x.x) == i && points_.index(x.y) == j; };
         auto along = [&](const Vec3& u, const Vec3& v) {
             const int n = std::max(1, static_cast<int>(std::ceil(distance(u, v) / step_)));
-            for (int k = 0; k <= n; ++k)
+            // Only the steps near the cell are made (a long edge crosses many cells); which of
+            // them lie inside is decided as before, on the point itself.
+            double lo = 0, hi = n;
+            for (const auto [a, b, c0] : {std::array{u.x, v.x, double(i)}, std::array{u.y, v.y, double(j)}}) {
+                const double d = b - a;
+                if (d == 0) continue;
+                const double t0 = (c0 * kCell - a) / d * n, t1 = ((c0 + 1) * kCell - a) / d * n;
+                lo = std::max(lo, std::floor(std::min(t0, t1)) - 2), hi = std::min(hi, std::ceil(std::max(t0, t1)) + 2);
+            }
+            if (!(lo <= hi)) return;  // the edge passes by (or a NaN, which no cell holds)
+            for (int k = static_cast<int>(lo); k <= static_cast<int>(hi); ++k)
                 if (const Vec3 x = u + (v - u) * (double(k) / n); inside_cell(x)) out.push_back(x);
         };
         if (const auto* faces = faces_.at(i, j)) {
@@ -736,13 +747,19 @@ private:
 // within coverage_reach of it on its own stretch of surface (overhang.hpp's `covers`, as the
 // sampling counts it) lies within the walls' reach of a contact? Then its tip may go:
 // `check` finds every point it held within its own reach of a wall.
-bool walls_carry(JudgedSurface& surface, const Contacts& contacts, const Vec3& s, const Params& p) {
-    const double reach = wall_reach(p), r = coverage_reach(p.sampling_distance);
-    const double disc = r + kProbeCover * kProbeStepOfReach * r;  // every point within r has a probe in it
+// The reaches walls_carry asks at, their rises taken once per stage.
+double probe_disc(double r) { return r + kProbeCover * kProbeStepOfReach * r; }
+struct CarryReach {
+    explicit CarryReach(const Params& p)
+        : walls(wall_reach(p), p.critical_angle), disc(probe_disc(coverage_reach(p.sampling_distance)), p.critical_angle) {}
+    Cover walls;  // a wall's contact carries what lies within this
+    Cover disc;   // every point within coverage_reach has a probe within this
+};
+bool walls_carry(JudgedSurface& surface, const Contacts& contacts, const Vec3& s, const CarryReach& reach) {
     std::size_t hint = contacts.segments.size();  // the probes come in runs of neighbours
-    if (!near_contact(contacts, s, reach, p, &hint)) return false;
-    return !surface.visit_near(s, disc, [&](const Vec3& x) {
-        return covers(s, x, disc, p.critical_angle) && !near_contact(contacts, x, reach, p, &hint);
+    if (!near_contact(contacts, s, reach.walls, &hint)) return false;
+    return !surface.visit_near(s, reach.disc.reach, [&](const Vec3& x) {
+        return reach.disc(s, x) && !near_contact(contacts, x, reach.walls, &hint);
     });
 }
 
@@ -820,6 +837,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
     const double margin = 2 * p.sampling_distance + 2 * coverage_reach(p.sampling_distance);
     near.min = near.min - Vec3{margin, margin, margin}, near.max = near.max + Vec3{margin, margin, margin};
     JudgedSurface surface(q.mesh(), kProbeStepOfReach * coverage_reach(p.sampling_distance), near, p.critical_angle);
+    const CarryReach carry(p);
     const double tight = std::min(p.ceiling_span, kTightRows * 2 * wall_reach(p));
     // What the chosen regions' own walls carry: more walls only add contacts, so those stay carried.
     std::vector<char> carried(samples.size(), 0);
@@ -839,7 +857,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
             if (l.pieces.empty()) continue;
             l.tops = wall_contacts(q, l.pieces, p);
             for (std::size_t i : r.samples)
-                if (walls_carry(surface, l.tops, samples[i].p, p)) l.carried.push_back(i);
+                if (walls_carry(surface, l.tops, samples[i].p, carry)) l.carried.push_back(i);
                 else l.left.push_back(samples[i]);
             if (!best || l.left.size() < best->left.size()) best = std::move(l);
         }
@@ -876,7 +894,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
     }
     const Contacts tops = wall_contacts(q, out.walls, p);
     for (std::size_t i = 0; i < samples.size(); ++i) {
-        if (carried[i] || walls_carry(surface, tops, samples[i].p, p)) ++out.covered;
+        if (carried[i] || walls_carry(surface, tops, samples[i].p, carry)) ++out.covered;
         else out.rest.push_back(samples[i]);
     }
     return out;

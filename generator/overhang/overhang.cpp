@@ -30,35 +30,24 @@ bool owns_edge_points(const Vec3& u, const Vec3& v) {
     return dy < 0 || (dy == 0 && dx > 0);
 }
 
-// horizontal_distance(a, b) <= reach, decided from the squares where they are clear (a relative
-// 1e-9 either side, far beyond their rounding) and by the same hypot otherwise: the same answer,
-// without a hypot for most of the many points the sampling asks about.
-bool within_reach(const Vec3& a, const Vec3& b, double reach) {
-    if (!(reach >= 0)) return false;  // as hypot's answer: never <= a negative (or NaN) reach
-    const double dx = a.x - b.x, dy = a.y - b.y, d2 = dx * dx + dy * dy, r2 = reach * reach;
-    if (!(d2 <= r2 * (1 + 1e-9))) return false;  // also NaN, which hypot would not call near
-    return d2 < r2 * (1 - 1e-9) || horizontal_distance(a, b) <= reach;
-}
-
 // Points that cover overhang points around them (samples, anchors), filed in an XY grid with
 // cells one reach wide: every coverer of x lies in x's cell or the eight around it.
 class CoverGrid {
 public:
-    CoverGrid(double reach, double critical_angle)
-        : grid_(reach), reach_(reach), rise_(surface_rise(reach, critical_angle)) {}
+    CoverGrid(double reach, double critical_angle) : grid_(reach), cover_(reach, critical_angle) {}
 
     void add(const Vec3& p) { grid_.insert(p, p); }
     // `above`: how much higher than x a coverer may lie at most (beyond the surface rule).
     // covers(q, x, reach, angle), its rise taken once.
     bool covered(const Vec3& x, double above = INFINITY) const {
         return grid_.visit_near(x, 1, [&](const Vec3& q) {
-            return q.z <= x.z + above && within_reach(q, x, reach_) && std::abs(q.z - x.z) <= rise_;
+            return q.z <= x.z + above && cover_(q, x);
         });
     }
 
 private:
     XyGrid<Vec3> grid_;
-    double reach_, rise_;
+    Cover cover_;
 };
 
 void sample_segment(const Vec3& a, const Vec3& b, double spacing, std::vector<Vec3>& out) {
@@ -252,6 +241,8 @@ OverhangOptions overhang_options(const Params& p) {
 }
 
 double coverage_reach(double sampling_distance) { return std::sqrt(0.5) * sampling_distance; }
+
+Cover::Cover(double reach, double critical_angle_deg) : reach(reach), rise(surface_rise(reach, critical_angle_deg)) {}
 
 bool covers(const Vec3& sample, const Vec3& x, double reach, double critical_angle_deg) {
     // The rise (a tangent) only for points within reach: most points asked about are not.

@@ -77,6 +77,15 @@ double coverage_reach(double sampling_distance);
 // Does a sample at `sample` cover the overhang point `x`? Within coverage_reach horizontally and on
 // the same surface: no further up or down than the steepest overhang rises over that reach.
 bool covers(const Vec3& sample, const Vec3& x, double reach, double critical_angle_deg);
+// The same for many points at one reach: the rise (a tangent) taken once. Cover(r, a)(s, x) ==
+// covers(s, x, r, a).
+struct Cover {
+    Cover(double reach, double critical_angle_deg);
+    bool operator()(const Vec3& sample, const Vec3& x) const {
+        return within_reach(sample, x, reach) && std::abs(sample.z - x.z) <= rise;
+    }
+    double reach, rise;
+};
 
 // Does an overhang point rest on material below it (inside overlapping shells, or with at most
 // `touching_space` of air below)? Such a point needs no support (and gets no contact).

@@ -7,7 +7,9 @@
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <memory>
 #include <tuple>
+#include <unordered_map>
 
 #include <fmt/format.h>
 #include <unistd.h>
@@ -158,11 +160,23 @@ SizedTree grow_cheaper_tree(const ModelQuery& q, const SupportTree& hung, const 
 }
 
 FeetTreeCounter feet_tree_counter(const ModelQuery& q, const Params& p, const std::vector<Box3>& support_blockers) {
-    return [&q, p, support_blockers](const std::vector<Sample>& samples, const std::vector<Vec3>& feet) {
+    // The answers by their question, byte for byte (the samples' points and kinds, the feet): the
+    // walls and the hybrid price the same region's own tree when both lay one out over it.
+    auto known = std::make_shared<std::unordered_map<std::string, TreeCount>>();
+    return [&q, p, support_blockers, known](const std::vector<Sample>& samples, const std::vector<Vec3>& feet) {
+        std::string key;
+        key.reserve(samples.size() * (3 * sizeof(double) + sizeof(SampleKind)) + feet.size() * 3 * sizeof(double) + 8);
+        auto put = [&key](const auto& x) { key.append(reinterpret_cast<const char*>(&x), sizeof x); };
+        put(samples.size());
+        for (const Sample& s : samples) put(s.p.x), put(s.p.y), put(s.p.z), put(s.kind);
+        for (const Vec3& f : feet) put(f.x), put(f.y), put(f.z);
+        if (const auto it = known->find(key); it != known->end()) return it->second;
         const SupportTree hung = hang_feet(hang_leaves(q, samples, p, support_blockers), feet, p);
         const SizedTree t = grow_cheaper_tree(q, hung, p, support_blockers);
         const SlicerCost c = t.tree.slicer_cost ? *t.tree.slicer_cost : estimate_slicer_cost(t.tree, mean_strut_widths(t), p);
-        return TreeCount{c.island_layers, c.outline_mm, c.travel_mm};
+        const TreeCount count{c.island_layers, c.outline_mm, c.travel_mm};
+        known->emplace(std::move(key), count);
+        return count;
     };
 }
 
@@ -171,7 +185,8 @@ namespace {
 // The hybrid (ceilings/hybrid.hpp) under what the walls left, kept clear of the walls (their
 // boxes, a side clearance around them, join the user's blockers): the walls and the hybrid's
 // pieces together, the samples neither carries, and the hybrid's feet.
-Ceilings with_hybrid(const ModelQuery& q, const Ceilings& walls, const Params& p, const std::vector<Box3>& user_blockers) {
+Ceilings with_hybrid(const ModelQuery& q, const Ceilings& walls, const Params& p, const std::vector<Box3>& user_blockers,
+                     const FeetTreeCounter& tree_count) {
     if (p.hybrid_height <= 0) return walls;
     std::vector<Box3> blockers = user_blockers;
     for (const CeilingWall& w : walls.walls) {
@@ -181,7 +196,7 @@ Ceilings with_hybrid(const ModelQuery& q, const Ceilings& walls, const Params& p
         b.max = {std::max(w.from.x, w.to.x) + side, std::max(w.from.y, w.to.y) + side, w.top};
         blockers.push_back(b);
     }
-    Ceilings hybrid = support_hybrid(q, walls.rest, p, feet_tree_counter(q, p, user_blockers), blockers);
+    Ceilings hybrid = support_hybrid(q, walls.rest, p, tree_count, blockers);
     if (hybrid.walls.empty()) return walls;
     Ceilings out = walls;
     out.walls.insert(out.walls.end(), hybrid.walls.begin(), hybrid.walls.end());
@@ -576,8 +591,12 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     // the hybrid's short walls (on the tree) take theirs; the tree grows from the rest.
     Ceilings walls_only;
     Ceilings ceilings = sw.time("ceilings", progress, [&] {
-        walls_only = support_ceilings(*query, r.samples.samples, p, tree_counter(*query, p, blockers), blockers);
-        return with_hybrid(*query, walls_only, p, blockers);
+        // One counter for both: it remembers the trees it grew (a region the walls priced is often
+        // the hybrid's too).
+        const FeetTreeCounter count = feet_tree_counter(*query, p, blockers);
+        walls_only = support_ceilings(*query, r.samples.samples, p,
+                                      [&count](const std::vector<Sample>& s) { return count(s, {}); }, blockers);
+        return with_hybrid(*query, walls_only, p, blockers, count);
     });
     auto leaves_of = [&](const Ceilings& c) {
         return c.walls.empty() ? SupportTree{} : hang_feet(hang_leaves(*query, c.rest, p, blockers), c.feet, p);

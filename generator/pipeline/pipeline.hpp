@@ -52,6 +52,8 @@ SizedTree grow_cheaper_tree(const ModelQuery& placed, const SupportTree& hung, c
 // keeps a reference to `placed` and copies of the rest.
 TreeCounter tree_counter(const ModelQuery& placed, const Params& p, const std::vector<Box3>& support_blockers = {});
 // The same with a tip under each of some feet (the hybrid's, ceilings/hybrid.hpp, tree/feet.hpp).
+// It remembers its answers (its copies share them): asked again for the same samples and feet, bit
+// for bit, it gives the same count without growing the tree again.
 FeetTreeCounter feet_tree_counter(const ModelQuery& placed, const Params& p,
                                   const std::vector<Box3>& support_blockers = {});
 // Supports from a grown tree (and the ceiling walls beside it): struts in `omit` (indices into

@@ -58,6 +58,29 @@ void row_intervals(const std::vector<Segment>& segs, std::vector<Interval>& out)
     }
 }
 
+// `iv` into `out` sorted by (row, x0): counted into rows (rows span a few hundred), each row's few
+// intervals then sorted by x0. Intervals of equal row and x0 may come in any order (merged_length's
+// answer does not depend on it). `first` is scratch.
+void sort_by_row(const std::vector<Interval>& iv, std::vector<Interval>& out, std::vector<std::size_t>& first) {
+    out.resize(iv.size());
+    if (iv.empty()) return;
+    long lo = iv.front().row, hi = lo;
+    for (const auto& r : iv) lo = std::min(lo, r.row), hi = std::max(hi, r.row);
+    first.assign(static_cast<std::size_t>(hi - lo) + 2, 0);
+    for (const auto& r : iv) ++first[static_cast<std::size_t>(r.row - lo) + 1];
+    for (std::size_t k = 1; k < first.size(); ++k) first[k] += first[k - 1];
+    for (const auto& r : iv) out[first[static_cast<std::size_t>(r.row - lo)]++] = r;
+    // first[k] is now the end of row k: each row's run sorted by x0.
+    std::size_t begin = 0;
+    for (std::size_t k = 0; k + 1 < first.size(); ++k) {
+        const std::size_t end = first[k];
+        if (end - begin > 1)
+            std::sort(out.begin() + static_cast<std::ptrdiff_t>(begin), out.begin() + static_cast<std::ptrdiff_t>(end),
+                      [](const Interval& a, const Interval& b) { return a.x0 < b.x0; });
+        begin = end;
+    }
+}
+
 // Length of the union of intervals sorted by (row, x0).
 double merged_length(const std::vector<Interval>& iv) {
     double total = 0;
@@ -94,7 +117,8 @@ double solid_volume(const std::vector<Body>& bodies, double wall) {
     if (meshes.empty()) return 0;
     double sampled_sum = 0, sampled_union = 0;
     std::vector<std::size_t> active;
-    std::vector<Interval> rows, one;
+    std::vector<Interval> rows, one, sorted;
+    std::vector<std::size_t> first;
     auto next = by_first_slice.begin();
     for (long k = by_first_slice.begin()->first; next != by_first_slice.end() || !active.empty(); ++k) {
         if (active.empty() && next->first > k) k = next->first;
@@ -108,9 +132,8 @@ double solid_volume(const std::vector<Body>& bodies, double wall) {
             for (const auto& r : one) sampled_sum += r.x1 - r.x0;
             rows.insert(rows.end(), one.begin(), one.end());
         }
-        std::sort(rows.begin(), rows.end(),
-                  [](const Interval& a, const Interval& b) { return a.row != b.row ? a.row < b.row : a.x0 < b.x0; });
-        sampled_union += merged_length(rows);
+        sort_by_row(rows, sorted, first);
+        sampled_union += merged_length(sorted);
     }
     // Bodies too thin to meet the grid at all: nothing to say about their overlaps.
     if (sampled_sum <= 0) return exact_sum;

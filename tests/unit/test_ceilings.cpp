@@ -343,3 +343,31 @@ TEST(Ceilings, ARoofSlopingBothWaysGetsRowsCloseEnoughForItsStaircases) {
         expect_walls_hold_what_they_take(w, what);
     }
 }
+
+// The walls and the hybrid price a region with one counter that remembers the trees it grew: asked
+// again, or asked what a fresh counter is asked, it gives the same count, bit for bit; other
+// samples, or the same with a foot, are other questions.
+TEST(Ceilings, TheRememberingTreeCounterAnswersAsAFreshOne) {
+    const Mesh model = low_lid();
+    Params p;
+    ModelQuery q(model);
+    const auto samples = sample_overhangs(model, {p.critical_angle, p.sampling_distance, p.layer_height, touching_space(p)}, &q).samples;
+    ASSERT_GT(samples.size(), 20u);
+    const std::vector<Sample> half(samples.begin(), samples.begin() + samples.size() / 2);
+    const std::vector<Vec3> foot{{0, 0, 2}};
+    auto same = [](const TreeCount& a, const TreeCount& b) {
+        return a.island_layers == b.island_layers && a.outline_mm == b.outline_mm && a.hop_mm == b.hop_mm;
+    };
+    const FeetTreeCounter remembering = feet_tree_counter(q, p);
+    const FeetTreeCounter copy = remembering;  // shares what it remembers
+    const TreeCount all = remembering(samples, {});
+    EXPECT_TRUE(same(copy(samples, {}), all));
+    EXPECT_TRUE(same(feet_tree_counter(q, p)(samples, {}), all));
+    const TreeCount some = remembering(half, {});
+    EXPECT_TRUE(same(feet_tree_counter(q, p)(half, {}), some));
+    EXPECT_FALSE(same(some, all));
+    const TreeCount with_foot = copy(half, foot);
+    EXPECT_TRUE(same(feet_tree_counter(q, p)(half, foot), with_foot));
+    EXPECT_FALSE(same(with_foot, some));
+    EXPECT_TRUE(same(tree_counter(q, p)(half), some));
+}

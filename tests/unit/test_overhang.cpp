@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 
+#include "core/rules.hpp"
 #include "overhang/overhang.hpp"
 #include "query/model_query.hpp"
 #include "shapes.hpp"
@@ -625,4 +626,23 @@ TEST(TopUp, ATipMovedAsideGetsTheGapItLeavesFilled) {
     }
     for (const auto& x : dense_overhang_points(plate.mesh, plate.o, true))
         EXPECT_TRUE(covered_by(all, x, plate.o)) << "uncovered at " << x.x << ", " << x.y;
+}
+
+// Cover takes the rise once; its answer is covers', and within_reach is hypot's <= (points on and
+// around the reach's circle and the rise's bounds, where the squares alone would not decide).
+TEST(Covers, CoverAndWithinReachAnswerAsCoversAndHypot) {
+    const double reach = coverage_reach(2.5);
+    for (double angle : {30.0, 45.0, 55.0}) {
+        const Cover cover(reach, angle);
+        const double rise = surface_rise(reach, angle);
+        const Vec3 s{1.1, -2.3, 7.7};
+        for (int k = 0; k < 4000; ++k) {
+            const double a = 0.0017 * k, r = reach * (0.999 + 0.0000005 * (k % 4001)) * (k % 3 == 0 ? 1.0 : 0.5 + 0.001 * k);
+            const double dz = rise * (k % 5 == 0 ? 1.0 : (k % 5 == 1 ? -1.0 : 0.0007 * (k % 2000) - 0.7));
+            const Vec3 x{s.x + r * std::cos(a), s.y + r * std::sin(a), s.z + dz};
+            EXPECT_EQ(cover(s, x), covers(s, x, reach, angle)) << k;
+            EXPECT_EQ(within_reach(s, x, r), horizontal_distance(s, x) <= r) << k;
+            EXPECT_EQ(within_reach(s, x, reach), horizontal_distance(s, x) <= reach) << k;
+        }
+    }
 }
