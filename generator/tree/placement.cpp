@@ -42,6 +42,7 @@ std::array<Vec3, 5> square_points(const Vec3& c, double w) {
 struct Ceiling {
     double drop = 0;
     double over_centre = 0;
+    double lowest = INFINITY;  // the lowest of the model over the square
 };
 
 // nullopt when nothing is above the centre.
@@ -55,6 +56,7 @@ std::optional<Ceiling> ceiling_above(const ModelQuery& model, const std::array<V
         }
         if (i == 0) c.over_centre = hit->point.z;
         c.drop = std::max(c.drop, z - hit->point.z);
+        c.lowest = std::min(c.lowest, hit->point.z);
     }
     return c;
 }
@@ -143,11 +145,14 @@ bool in_open_air(const ModelQuery& model, const Vec3& centre, const std::array<V
 struct Attempt {
     PillarFit fit = PillarFit::NoRoom;
     Pillar pillar;
-    // Lower is better. A level floor counts for more than the side clearance: a pillar that stands
-    // on a corner may break off, one beside a wall only prints fused to it.
-    int rank = 3;
+    // Lower is better. Holding the overhang counts for most: a pillar moved where the overhang
+    // is higher over all of its top holds nothing up. A level floor counts for more than the side
+    // clearance: a pillar that stands on a corner may break off, one beside a wall only prints
+    // fused to it.
+    int rank = 7;
 };
 
+constexpr int kRankAway = 4;      // moved where the overhang over all of its top is higher than its sample
 constexpr int kRankSlope = 2;     // on a slope (air under every corner)
 constexpr int kRankAgainst = 1;   // nearer a wall beside it than tip_side_clearance
 
@@ -172,7 +177,12 @@ Attempt pillar_at(const ModelQuery& model, const Vec3& sample, const Vec3& centr
     if (pl.top.z - pl.bottom.z < p.layer_height) return {PillarFit::TooLow, pl};
     // A foot that would have to stand on its uphill corner (a slope too steep across it) does not fit.
     if (!fl.clear || !prism_is_clear(model, pl.bottom, p.d_min, pl.top, p.tip_diameter)) return {};
-    const int rank = (fl.level ? 0 : kRankSlope) + (pillar_keeps_clearance_beside(model, pl, p) ? 0 : kRankAgainst);
+    // Its top a gap below the sample's height: where the overhang over the whole top is higher
+    // (a pillar moved off the rim of a ridge), nothing is right above the top and it holds
+    // nothing up (`check` finds no contact there).
+    const bool away = ceiling->lowest - sample.z > kLevel;
+    const int rank = (away ? kRankAway : 0) + (fl.level ? 0 : kRankSlope) +
+                     (pillar_keeps_clearance_beside(model, pl, p) ? 0 : kRankAgainst);
     return {PillarFit::Fits, pl, rank};
 }
 

@@ -39,11 +39,12 @@ struct Generated {
     CheckResult check;
 };
 
-Generated generate(const std::string& input, double scale, const std::string& out, const std::string& extra = "") {
+Generated generate(const std::string& input, double scale, const std::string& out, const std::string& extra = "",
+                   const std::string& orient = "keep") {
     Generated g;
     g.dir = out;
     g.name = std::filesystem::path(input).stem().string();
-    auto r = run(quote(cli()) + " " + quote(input) + " --orient keep --scale " + std::to_string(scale) + " --out " +
+    auto r = run(quote(cli()) + " " + quote(input) + " --orient " + orient + " --scale " + std::to_string(scale) + " --out " +
                  quote(out) + " -q " + extra);
     EXPECT_EQ(r.code, 0) << r.out;
     g.report = nlohmann::json::parse(slurp(out + "/" + g.name + ".report.json"));
@@ -289,6 +290,22 @@ TEST_P(ValidationPart, ChecksPass) {
 INSTANTIATE_TEST_SUITE_P(Bench, ValidationPart,
                          ::testing::Values("bearing_block", "cable_clip", "enclosure_lid", "ledges_low_roof", "pipe_tee",
                                            "propeller", "shelf_bracket", "shelter_roof", "wall_rack"));
+
+// The validation parts in the pose a user gets by default (--orient auto): every check passes
+// there too. wall_rack's auto pose lost the keyholes' rim leaves, their only landing a shelf top
+// 0.1 deg steeper than a tip stands on by choice (GrowTree.ALeafWhoseOnlyLandingIs...): 22
+// points beyond reach. enclosure_lid is left out: its pose search alone takes 30 s.
+class ValidationPartAuto : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ValidationPartAuto, ChecksPassInTheChosenPose) {
+    TempDir tmp;
+    auto g = generate(source_dir() + "/bench/validation/" + GetParam() + ".stl", 1.0, tmp.path, "", "auto");
+    EXPECT_TRUE(g.check.ok()) << g.check.summary();
+}
+
+INSTANTIATE_TEST_SUITE_P(Bench, ValidationPartAuto,
+                         ::testing::Values("bearing_block", "cable_clip", "ledges_low_roof", "pipe_tee", "propeller",
+                                           "shelf_bracket", "shelter_roof", "wall_rack"));
 
 // The default run turns each example to its least-support pose; there too every check passes
 // (the wheel's auto pose once put a strut's foot 0.29 mm into a ridge of the rim).
