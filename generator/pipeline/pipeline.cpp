@@ -325,10 +325,10 @@ std::optional<Vec3> beside_blockers(const ModelQuery& model, const Vec3& s, cons
 }
 
 // What holds each sample's overhang up, at the height of that overhang: a live leaf's tip top, a
-// pillar's top, else the sample itself (it rests on material, is bridged, or was given up: where
-// no strut fits, more samples next to it would be given up too). The samples in `lost` (leaves
-// the sweep lost: their strut found no way down) hold nothing up: a leaf beside one starts
-// elsewhere and may get down.
+// pillar's top, else the sample itself (it rests on material, is bridged, or no pillar fits: where
+// no pillar fits, more samples next to it would find none either). The samples in `lost` hold
+// nothing up: leaves the sweep lost (their strut found no way down; a leaf beside one starts
+// elsewhere and may get down) and leaves given up before the tree grew (untipped).
 std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samples, const std::vector<Vec3>& lost = {}) {
     std::vector<Vec3> out, carried = lost;
     for (const auto& n : t.nodes)
@@ -365,6 +365,17 @@ bool leaned_on_lost(const Ceilings& c, const std::vector<Vec3>& lost) {
         if (c.stay[i] && std::any_of(lost.begin(), lost.end(), [&](const Vec3& x) { return distance(x, c.rest[i].p) == 0; }))
             return true;
     return false;
+}
+
+// The samples whose leaves hang_leaves gave up (no tip fits under it, or its leaf cannot leave
+// the crevice it hangs in): they hold nothing up either. A sample beside one, where the overhang
+// is left beyond reach, may get a tip: the bottom edge of a fold in beast's scan (auto pose),
+// whose upper end takes no tip and whose lower end does.
+std::vector<Vec3> untipped(const SupportTree& hung) {
+    std::vector<Vec3> out;
+    for (const Node& n : hung.nodes)
+        if (n.kind == NodeKind::Dropped) out.push_back(n.contact);
+    return out;
 }
 
 // The samples of the leaves hung in `hung` that the sweep lost in `grown` (grown from `hung`:
@@ -607,7 +618,8 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     SupportTree hung;
     auto extra = sw.time("coverage top-up", progress, [&] {
         hung = hang_leaves(*query, r.samples.samples, p, blockers);
-        return samples_beyond_reach(r.model, oo, *query, r.samples, coverers(hung, r.samples.samples), blockers, p);
+        const auto held = coverers(hung, r.samples.samples, untipped(hung));
+        return samples_beyond_reach(r.model, oo, *query, r.samples, held, blockers, p);
     });
     if (!extra.empty()) {
         add_topped_up(r.samples, extra);
@@ -630,6 +642,13 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         return c.walls.empty() ? SupportTree{} : hang_feet(hang_leaves(*query, c.rest, p, blockers), c.feet, p);
     };
     SupportTree hung_rest = leaves_of(ceilings);
+    if (std::getenv("CS_DBG")) { FILE* dbgf = fopen("/tmp/blades/dbg.txt", "a");
+        for (const Vec3& x : ceilings.released) fprintf(dbgf, "released %.2f %.2f %.2f\n", x.x, x.y, x.z);
+        for (std::size_t i = 0; i < ceilings.stay.size(); ++i) if (ceilings.stay[i]) fprintf(dbgf, "stay %.2f %.2f %.2f\n", ceilings.rest[i].p.x, ceilings.rest[i].p.y, ceilings.rest[i].p.z);
+        for (const auto& n : hung_rest.nodes) if (n.kind == NodeKind::Dropped) fprintf(dbgf, "dropped %.2f %.2f %.2f\n", n.contact.x, n.contact.y, n.contact.z);
+        for (const auto& w : ceilings.walls) fprintf(dbgf, "wall %.2f %.2f - %.2f %.2f top %.2f\n", w.from.x, w.from.y, w.to.x, w.to.y, w.top);
+        fclose(dbgf);
+    }
     // The tree and the columns baseline start from the same leaves (hanging them does not depend
     // on the strategy); the baseline carries every sample.
     SupportTree* leaves = ceilings.walls.empty() ? &hung : &hung_rest;
