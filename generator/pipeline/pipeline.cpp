@@ -642,13 +642,6 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         return c.walls.empty() ? SupportTree{} : hang_feet(hang_leaves(*query, c.rest, p, blockers), c.feet, p);
     };
     SupportTree hung_rest = leaves_of(ceilings);
-    if (std::getenv("CS_DBG")) { FILE* dbgf = fopen("/tmp/blades/dbg.txt", "a");
-        for (const Vec3& x : ceilings.released) fprintf(dbgf, "released %.2f %.2f %.2f\n", x.x, x.y, x.z);
-        for (std::size_t i = 0; i < ceilings.stay.size(); ++i) if (ceilings.stay[i]) fprintf(dbgf, "stay %.2f %.2f %.2f\n", ceilings.rest[i].p.x, ceilings.rest[i].p.y, ceilings.rest[i].p.z);
-        for (const auto& n : hung_rest.nodes) if (n.kind == NodeKind::Dropped) fprintf(dbgf, "dropped %.2f %.2f %.2f\n", n.contact.x, n.contact.y, n.contact.z);
-        for (const auto& w : ceilings.walls) fprintf(dbgf, "wall %.2f %.2f - %.2f %.2f top %.2f\n", w.from.x, w.from.y, w.to.x, w.to.y, w.top);
-        fclose(dbgf);
-    }
     // The tree and the columns baseline start from the same leaves (hanging them does not depend
     // on the strategy); the baseline carries every sample.
     SupportTree* leaves = ceilings.walls.empty() ? &hung : &hung_rest;
