@@ -14,6 +14,17 @@
 #include "query/model_query.hpp"
 
 namespace cs {
+
+double wall_line_seconds(const SlicerRoute& r, double length, double height, double thickness, const Params& p) {
+    return height / p.layer_height * line_route_seconds(r, length, thickness);
+}
+
+double walls_line_seconds(const SlicerRoute& r, const std::vector<CeilingWall>& walls, const Params& p) {
+    double s = 0;
+    for (const CeilingWall& w : walls) s += wall_line_seconds(r, horizontal_distance(w.from, w.to), w.top - w.bottom, w.thickness, p);
+    return s;
+}
+
 namespace {
 
 // Stations along a wall (mm): fine enough that a round ceiling's top steps by well under a layer
@@ -293,7 +304,7 @@ double walls_route_seconds(const SlicerRoute& r, const RegionWalls& w, const Par
         for (std::size_t i = 0; i < run.top.size(); ++i)
             height += run.top[i].z - run.floor[i], thickness = std::max(thickness, run.thickness[i]);
         height /= run.top.size();
-        s += height / p.layer_height * line_route_seconds(r, horizontal_distance(run.top.front(), run.top.back()), thickness);
+        s += wall_line_seconds(r, horizontal_distance(run.top.front(), run.top.back()), height, thickness, p);
     }
     const double layers = w.height / p.layer_height, pieces = static_cast<double>(w.pieces);
     return s + layers * tree_route_seconds(r, pieces, 0, (pieces - 1) * p.ceiling_span);
