@@ -22,6 +22,7 @@
 #include "render/render.hpp"
 #include "query/model_query.hpp"
 #include "struts/solid_volume.hpp"
+#include "core/slicer_time.hpp"
 #include "tree/slicer_cost.hpp"
 #include "tree/feet.hpp"
 #include "tree/tree.hpp"
@@ -231,6 +232,10 @@ Supports finish_supports(SizedTree grown, const Params& p, const std::vector<int
     s.mesh = bodies_mesh(s.bodies, p.wall_thickness);
     s.volume = solid_volume(s.bodies, p.wall_thickness);
     s.walls = std::move(walls);
+    // The estimate covers the walls' lines too (a region all walls would otherwise cost nothing).
+    s.slicer_cost.cura_seconds += walls_line_seconds(kCuraRoute, s.walls, p);
+    s.slicer_cost.prusa_seconds += walls_line_seconds(kPrusaRoute, s.walls, p);
+    s.slicer_cost.seconds = 0.5 * (s.slicer_cost.cura_seconds + s.slicer_cost.prusa_seconds);
     for (const auto& w : s.walls) {
         const Mesh m = wall_mesh(w);
         s.volume += signed_volume(m);
