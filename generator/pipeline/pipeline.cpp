@@ -330,10 +330,9 @@ std::optional<Vec3> beside_blockers(const ModelQuery& model, const Vec3& s, cons
 }
 
 // What holds each sample's overhang up, at the height of that overhang: a live leaf's tip top, a
-// pillar's top, else the sample itself (it rests on material, is bridged, or no pillar fits: where
-// no pillar fits, more samples next to it would find none either). The samples in `lost` hold
-// nothing up: leaves the sweep lost (their strut found no way down; a leaf beside one starts
-// elsewhere and may get down) and leaves given up before the tree grew (untipped).
+// pillar's top, else the sample itself (it rests on material, or is bridged). The samples in
+// `lost` hold nothing up: leaves the sweep lost (their strut found no way down; a leaf beside one
+// starts elsewhere and may get down) and samples given up before the tree grew (untipped).
 std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samples, const std::vector<Vec3>& lost = {}) {
     std::vector<Vec3> out, carried = lost;
     for (const auto& n : t.nodes)
@@ -372,12 +371,13 @@ bool leaned_on_lost(const Ceilings& c, const std::vector<Vec3>& lost) {
     return false;
 }
 
-// The samples whose leaves hang_leaves gave up (no tip fits under it, or its leaf cannot leave
-// the crevice it hangs in): they hold nothing up either. A sample beside one, where the overhang
-// is left beyond reach, may get a tip: the bottom edge of a fold in beast's scan (auto pose),
-// whose upper end takes no tip and whose lower end does.
+// The samples hang_leaves gave up (no tip fits under it, its leaf cannot leave the crevice it
+// hangs in, or, too low for a tree, no pillar fits under it): they hold nothing up either. A
+// sample beside one, where the overhang is left beyond reach, may get its support: the bottom
+// edge of a fold in beast's scan (auto pose), whose upper end takes no tip and whose lower end
+// does; a slope 2.1 mm over another in the tree example, where a pillar fits beside the sample.
 std::vector<Vec3> untipped(const SupportTree& hung) {
-    std::vector<Vec3> out;
+    std::vector<Vec3> out = hung.no_pillar;
     for (const Node& n : hung.nodes)
         if (n.kind == NodeKind::Dropped) out.push_back(n.contact);
     return out;
