@@ -89,6 +89,9 @@ struct Region {
     Box3 box;
 };
 
+// Lattice neighbours this many sampling distances apart (or less) join a region.
+constexpr double kRegionJoin = 1.5;
+
 // Samples that fall freely to the bed, joined into regions where lattice neighbours lie on the
 // same stretch of surface.
 std::vector<Region> free_regions(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p) {
@@ -101,7 +104,7 @@ std::vector<Region> free_regions(const ModelQuery& q, const std::vector<Sample>&
         free[i] = 1;
         grid.insert(s, i);
     }
-    const double rise = same_surface_rise(p, 1.5 * sd);
+    const double rise = same_surface_rise(p, kRegionJoin * sd);
     std::vector<char> seen(samples.size(), 0);
     std::vector<Region> regions;
     for (std::size_t i = 0; i < samples.size(); ++i) {
@@ -119,7 +122,7 @@ std::vector<Region> free_regions(const ModelQuery& q, const std::vector<Sample>&
             r.box.max = {std::max(r.box.max.x, a.x), std::max(r.box.max.y, a.y), std::max(r.box.max.z, a.z)};
             grid.visit_near(a, 2, [&](std::size_t j) {
                 const Vec3& b = samples[j].p;
-                if (!seen[j] && horizontal_distance(a, b) <= 1.5 * sd && std::abs(a.z - b.z) <= rise) seen[j] = 1, stack.push_back(j);
+                if (!seen[j] && horizontal_distance(a, b) <= kRegionJoin * sd && std::abs(a.z - b.z) <= rise) seen[j] = 1, stack.push_back(j);
             });
         }
         std::sort(r.samples.begin(), r.samples.end());
@@ -141,7 +144,7 @@ struct Frame {
 // is not so.
 std::optional<std::pair<double, double>> station_of(const ModelQuery& q, const XyGrid<std::size_t>& region,
                                                     const std::vector<Sample>& samples, const Vec3& c, const Vec3& across,
-                                                    const Params& p, double overhang_nz, double thickness) {
+                                                    const Params& p, double overhang_nz, double thickness, bool wide_ref = false) {
     const double half = 0.5 * thickness + tip_side_clearance(p), rise = same_surface_rise(p, p.sampling_distance);
     const Vec3 along{across.y, -across.x, 0};  // a wall may end at this station: clearance beyond it too
     const double side = tip_side_clearance(p);
@@ -149,11 +152,16 @@ std::optional<std::pair<double, double>> station_of(const ModelQuery& q, const X
     for (const Vec3 offset : {Vec3{}, across * -half, across * half, along * side, along * -side}) {
         const Vec3 x = c + offset;
         std::optional<double> z_ref;
-        region.visit_near(x, 1, [&](std::size_t i) {
-            if (horizontal_distance(samples[i].p, x) > p.sampling_distance) return false;
-            z_ref = samples[i].p.z;
-            return true;
-        });
+        // The stretch of surface of a sample within a sampling distance; else within the reach
+        // by which regions join samples (a narrow strip sampled along its edge only).
+        for (const double within : {1.0, wide_ref ? kRegionJoin : 1.0}) {
+            region.visit_near(x, within > 1 ? 2 : 1, [&](std::size_t i) {
+                if (horizontal_distance(samples[i].p, x) > within * p.sampling_distance) return false;
+                z_ref = samples[i].p.z;
+                return true;
+            });
+            if (z_ref) break;
+        }
         if (!z_ref) return std::nullopt;
         auto z = ceiling_near(q, x.x, x.y, *z_ref, rise, overhang_nz);
         if (!z) return std::nullopt;
@@ -176,19 +184,21 @@ struct Station {
     double floor, top, thickness;
 };
 std::optional<Station> station(const ModelQuery& q, const XyGrid<std::size_t>& region, const std::vector<Sample>& samples,
-                               const Vec3& c, const Vec3& across, const Params& p, double overhang_nz) {
-    auto st = station_of(q, region, samples, c, across, p, overhang_nz, p.wall_thickness);
+                               const Vec3& c, const Vec3& across, const Params& p, double overhang_nz,
+                               bool wide_ref = false) {
+    auto st = station_of(q, region, samples, c, across, p, overhang_nz, p.wall_thickness, wide_ref);
     if (!st) return std::nullopt;
     const double t = wall_thickness_for(p, st->second - st->first);
     if (t <= p.wall_thickness) return Station{st->first, st->second, p.wall_thickness};
-    auto thick = station_of(q, region, samples, c, across, p, overhang_nz, t);
+    auto thick = station_of(q, region, samples, c, across, p, overhang_nz, t, wide_ref);
     if (!thick) return std::nullopt;
     return Station{thick->first, thick->second, t};  // no taller than the first probe: t is enough
 }
 
 // The walls along one line (u from u0 to u1 at v): runs of stations where a wall fits.
 std::vector<Run> walls_along(const ModelQuery& q, const XyGrid<std::size_t>& region, const std::vector<Sample>& samples,
-                             const Frame& f, double v, double u0, double u1, const Params& p, double overhang_nz) {
+                             const Frame& f, double v, double u0, double u1, const Params& p, double overhang_nz,
+                             bool wide_ref = false) {
     const Vec3 across = f.at(0, 1, 0);
     std::vector<Run> out;
     Run cur;
@@ -199,7 +209,7 @@ std::vector<Run> walls_along(const ModelQuery& q, const XyGrid<std::size_t>& reg
     const int n = static_cast<int>(std::floor((u1 - u0) / kStation));
     for (int i = 0; i <= n; ++i) {
         const Vec3 c = f.at(u0 + i * kStation, v, 0);
-        if (auto st = station(q, region, samples, c, across, p, overhang_nz)) {
+        if (auto st = station(q, region, samples, c, across, p, overhang_nz, wide_ref)) {
             cur.top.push_back({c.x, c.y, st->top});
             cur.floor.push_back(st->floor);
             cur.thickness.push_back(st->thickness);
@@ -215,14 +225,15 @@ double coord(const Vec3& a, bool x) { return x ? a.x : a.y; }
 
 // A join between rows at v_a and v_b, at u: the wall across, or nothing where it does not fit.
 std::optional<Run> join_at(const ModelQuery& q, const XyGrid<std::size_t>& region, const std::vector<Sample>& samples,
-                           const Frame& f, double u, double v_a, double v_b, const Params& p, double overhang_nz) {
+                           const Frame& f, double u, double v_a, double v_b, const Params& p, double overhang_nz,
+                           bool wide_ref = false) {
     const Vec3 side = f.at(1, 0, 0);
     Run w;
     w.join = true;
     const int n = std::max(1, static_cast<int>(std::ceil((v_b - v_a) / kStation)));
     for (int i = 0; i <= n; ++i) {
         const Vec3 c = f.at(u, v_a + (v_b - v_a) * i / n, 0);
-        auto st = station(q, region, samples, c, side, p, overhang_nz);
+        auto st = station(q, region, samples, c, side, p, overhang_nz, wide_ref);
         if (!st) return std::nullopt;
         w.top.push_back({c.x, c.y, st->top});
         w.floor.push_back(st->floor);
@@ -269,6 +280,7 @@ struct RegionWalls {
     std::vector<Run> walls;
     double length = 0;        // of all walls, mm
     std::size_t pieces = 0;   // separate meanders (islands per layer)
+    std::size_t turned = 0;   // joins placed at the other end than the meander's (prefer_near)
     double height = 0;        // mean top height
 };
 
@@ -375,7 +387,7 @@ RowPlan plan_rows(const ModelQuery& q, const Region& r, const std::vector<Sample
 // The region's walls: its planned outer rows, as few rows between as keep them at most `span`
 // apart, and the joins.
 RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::vector<Sample>& samples, const Params& p,
-                         double overhang_nz, double span) {
+                         double overhang_nz, double span, const std::vector<Vec3>* prefer_near = nullptr) {
     const XyGrid<std::size_t>& grid = plan.grid;
     const Frame& f = plan.f;
     const bool along_x = f.along_x;
@@ -394,13 +406,27 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
             row_v.push_back(v);
             by_row.push_back(plan.moved && j == 0      ? plan.lo_runs
                              : plan.moved && j == gaps ? plan.hi_runs
-                                                       : walls_along(q, grid, samples, f, v, plan.u0, plan.u1, p, overhang_nz));
+                                                       : walls_along(q, grid, samples, f, v, plan.u0, plan.u1, p, overhang_nz, prefer_near != nullptr));
         }
     }
     RegionWalls out;
     std::vector<std::vector<char>> joined(by_row.size());
     for (std::size_t j = 0; j < by_row.size(); ++j) joined[j].assign(by_row[j].size(), 0);
     std::size_t joins = 0;
+    // Alternate ends: a meander, one line through the region. With `prefer_near` (samples the
+    // meander leaves to the tree) a join goes to the other end where that end is nearer to one of
+    // them, within a coverage reach (a rim or a narrow strip at the rows' ends): one join per pair
+    // of rows still, so no closed cell (a slicer prints every cell of a ladder as a loop of its own).
+    const double near_join = coverage_reach(p.sampling_distance);
+    auto nearest = [&](double u, std::size_t j) {
+        const Vec3 ja = f.at(u, row_v[j], 0), jb = f.at(u, row_v[j + 1], 0);
+        double d = INFINITY;
+        for (const Vec3& x : *prefer_near) {
+            const double t = std::clamp((coord(x, !along_x) - row_v[j]) / (row_v[j + 1] - row_v[j]), 0.0, 1.0);
+            d = std::min(d, horizontal_distance(x, ja + (jb - ja) * t));
+        }
+        return d;
+    };
     for (std::size_t j = 0; j + 1 < by_row.size(); ++j)
         for (std::size_t a = 0; a < by_row[j].size(); ++a)
             for (std::size_t b = 0; b < by_row[j + 1].size(); ++b) {
@@ -409,22 +435,30 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
                 const double b0 = coord(wb.front(), along_x), b1 = coord(wb.back(), along_x);
                 const double lo = std::max(a0, b0), hi = std::min(a1, b1);
                 if (hi - lo < kMinWall) continue;
-                // Alternate ends: a meander, one line through the region. The join's outer face is
-                // flush with the rows' ends, which are cut back to it: a slicer then prints the
-                // corner as one line turning (a stub or a T beside it becomes a line of its own).
-                const bool high_end = j % 2 == 0;
+                // The join's outer face is flush with the rows' ends, which are cut back to it: a
+                // slicer then prints the corner as one line turning (a stub or a T beside it
+                // becomes a line of its own).
                 const double half = 0.5 * p.wall_thickness;
+                bool high_end = j % 2 == 0;
+                bool turned = false;
+                if (prefer_near) {
+                    const double here = nearest(high_end ? hi - half : lo + half, j), there = nearest(high_end ? lo + half : hi - half, j);
+                    if (there <= near_join && there < here) high_end = !high_end, turned = true;
+                }
+                for (int end_tried = 0; end_tried < (turned ? 2 : 1); ++end_tried, high_end = !high_end)
                 for (int k = 0; k < 4; ++k) {
                     const double u = high_end ? hi - half - k * kStation : lo + half + k * kStation;
                     const double end = high_end ? u + half : u - half;
                     if (!can_end_at(by_row[j][a], end, along_x, high_end) || !can_end_at(by_row[j + 1][b], end, along_x, high_end))
                         break;
-                    if (auto w = join_at(q, grid, samples, f, u, row_v[j], row_v[j + 1], p, overhang_nz)) {
+                    if (auto w = join_at(q, grid, samples, f, u, row_v[j], row_v[j + 1], p, overhang_nz, prefer_near != nullptr)) {
                         end_at(by_row[j][a], end, along_x, high_end);
                         end_at(by_row[j + 1][b], end, along_x, high_end);
                         out.walls.push_back(*w);
                         joined[j][a] = joined[j + 1][b] = 1;
                         ++joins;
+                        if (turned && end_tried == 0) ++out.turned;
+                        end_tried = 2;  // placed: the other end is not tried
                         break;
                     }
                 }
@@ -766,6 +800,7 @@ bool walls_carry(JudgedSurface& surface, const Contacts& contacts, const Vec3& s
 // One way of laying a region's walls: the runs, their flat pieces, the pieces' contacts as `check`
 // finds them, and the region's samples they do not carry.
 struct Layout {
+    double span = 0;  // the rows' distance
     RegionWalls w;
     std::vector<CeilingWall> pieces;
     Contacts tops;
@@ -782,6 +817,91 @@ struct Layout {
 // along the most level direction between x and y were tried too: on the tuning models' slopes
 // and on tilted planes they left more samples than these, at both distances.)
 constexpr double kTightRows = 0.9;
+
+// Pieces end to end along one line, with the same top, floor and thickness (a chain of joins down a
+// narrow strip), made one: a slicer prints them as one wall anyway, and `check` then finds the long
+// top a contact along its length (each short one held the ceiling at its middle only).
+std::vector<CeilingWall> merge_in_line(std::vector<CeilingWall> pieces) {
+    auto same = [](double a, double b) { return std::abs(a - b) < 1e-9; };
+    for (bool merged = true; merged;) {
+        merged = false;
+        for (std::size_t i = 0; i < pieces.size() && !merged; ++i)
+            for (std::size_t j = i + 1; j < pieces.size() && !merged; ++j) {
+                CeilingWall &u = pieces[i], &v = pieces[j];
+                if (u.on_tree || v.on_tree || !same(u.top, v.top) || !same(u.bottom, v.bottom) || !same(u.thickness, v.thickness))
+                    continue;
+                const Vec3 du = u.to - u.from, dv = v.to - v.from;
+                if (std::abs(du.x * dv.y - du.y * dv.x) > 1e-9 * norm(du) * norm(dv)) continue;  // not parallel
+                for (int k = 0; k < 4 && !merged; ++k) {
+                    const Vec3 &shared_u = k & 1 ? u.to : u.from, &shared_v = k & 2 ? v.to : v.from;
+                    if (horizontal_distance(shared_u, shared_v) > 1e-6) continue;
+                    const Vec3 far_u = k & 1 ? u.from : u.to, far_v = k & 2 ? v.from : v.to;
+                    // End to end: the shared point between the far ends.
+                    if (dot(far_u - shared_u, far_v - shared_u) >= 0) continue;
+                    u.from = far_u, u.to = far_v, u.join = u.join && v.join;
+                    pieces.erase(pieces.begin() + static_cast<long>(j));
+                    merged = true;
+                }
+            }
+    }
+    return pieces;
+}
+
+// How many separate solids the pieces make as a slicer sees them (pieces touching or overlapping,
+// horizontally: they stand on one floor here).
+std::size_t islands(const std::vector<CeilingWall>& pieces) {
+    std::vector<std::size_t> parent(pieces.size());
+    for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+    auto root = [&](std::size_t i) {
+        while (parent[i] != i) i = parent[i] = parent[parent[i]];
+        return i;
+    };
+    auto point_to_segment = [](const Vec3& x, const Vec3& a, const Vec3& b) {
+        const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
+        const double t = l2 > 0 ? std::clamp(((x.x - a.x) * dx + (x.y - a.y) * dy) / l2, 0.0, 1.0) : 0.0;
+        return std::hypot(x.x - a.x - t * dx, x.y - a.y - t * dy);
+    };
+    std::size_t n = pieces.size();
+    for (std::size_t i = 0; i < pieces.size(); ++i)
+        for (std::size_t j = i + 1; j < pieces.size(); ++j) {
+            const CeilingWall &u = pieces[i], &v = pieces[j];
+            const double touch = 0.5 * (u.thickness + v.thickness) + 1e-6;  // segments in a plane: an end is nearest
+            const double d = std::min({point_to_segment(u.from, v.from, v.to), point_to_segment(u.to, v.from, v.to),
+                                       point_to_segment(v.from, u.from, u.to), point_to_segment(v.to, u.from, u.to)});
+            if (d <= touch && root(i) != root(j)) parent[root(i)] = root(j), --n;
+        }
+    return n;
+}
+
+// Rows' short runs that carry nothing the rest does not (a narrow strip crossed by the rows, held
+// by the joins along it): dropped, one at a time, where every sample the layout carries stays
+// carried. Each is a line of its own to a slicer (a comb's teeth: PrusaSlicer travels and retracts
+// to each, CuraEngine draws each out and back). Walls only (a run is one flat piece there).
+void drop_idle_stubs(const ModelQuery& q, JudgedSurface& surface, const std::vector<Sample>& samples, const Params& p,
+                     Layout& l) {
+    const double short_top = 2 * coverage_reach(p.sampling_distance);
+    const double near = short_top + 2 * coverage_reach(p.sampling_distance) + p.sampling_distance;
+    for (std::size_t k = l.w.walls.size(); k-- > 0;) {
+        const Run& run = l.w.walls[k];
+        const Vec3 a = run.top.front(), b = run.top.back();
+        if (run.join || horizontal_distance(a, b) >= short_top) continue;
+        std::vector<CeilingWall> others;
+        for (const CeilingWall& w : l.pieces)
+            if (w.join || horizontal_distance(w.from, a) > 1e-9 || horizontal_distance(w.to, b) > 1e-9) others.push_back(w);
+        if (others.size() + 1 != l.pieces.size()) continue;         // not one piece of its own
+        if (islands(others) > islands(l.pieces)) continue;          // it joins the walls around it
+        const Contacts tops = wall_contacts(q, others, p);
+        const Vec3 mid = (a + b) * 0.5;
+        const bool idle = std::all_of(l.carried.begin(), l.carried.end(), [&](std::size_t i) {
+            return horizontal_distance(samples[i].p, mid) > near || walls_carry(surface, tops, samples[i].p, p);
+        });
+        if (!idle) continue;
+        l.pieces = std::move(others);
+        l.tops = tops;
+        l.w.length -= horizontal_distance(a, b);
+        l.w.walls.erase(l.w.walls.begin() + static_cast<long>(k));
+    }
+}
 
 // Does any wall's solid (its width across, foot to top) overlap one of the boxes?
 bool enters_blocker(const std::vector<Run>& walls, const std::vector<Box3>& blockers, const Params& p) {
@@ -845,43 +965,64 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         // Rows the span apart; where they leave samples to a tree, also `tight` apart (a slope's
         // staircase of short pieces), keeping the layout that leaves fewer (the first of equals).
         const RowPlan plan = plan_rows(q, r, samples, p, overhang_nz);
-        std::optional<Layout> best;
-        for (double span : {p.ceiling_span, tight}) {
-            if (best && (best->left.empty() || span == p.ceiling_span || best->tops.narrow < 0.5 * best->tops.length)) break;
+        auto lay = [&](double span, const std::vector<Vec3>* prefer_near) -> std::optional<Layout> {
             Layout l;
-            l.w = region_walls(q, plan, samples, p, overhang_nz, span);
-            if (l.w.walls.empty() || enters_blocker(l.w.walls, blockers, p)) continue;
+            l.span = span;
+            l.w = region_walls(q, plan, samples, p, overhang_nz, span, prefer_near);
+            if (l.w.walls.empty() || enters_blocker(l.w.walls, blockers, p)) return std::nullopt;
+            if (prefer_near && l.w.turned == 0) return std::nullopt;  // the meander again
             for (const Run& run : l.w.walls)
                 for (auto& piece : flat_pieces(run, p)) l.pieces.push_back(piece);
             l.pieces = finish(std::move(l.pieces));
-            if (l.pieces.empty()) continue;
+            if (l.pieces.empty()) return std::nullopt;
+            if (prefer_near) l.pieces = merge_in_line(std::move(l.pieces));
             l.tops = wall_contacts(q, l.pieces, p);
             for (std::size_t i : r.samples)
                 if (walls_carry(surface, l.tops, samples[i].p, carry)) l.carried.push_back(i);
                 else l.left.push_back(samples[i]);
-            if (!best || l.left.size() < best->left.size()) best = std::move(l);
+            if (prefer_near && p.hybrid_height <= 0) drop_idle_stubs(q, surface, samples, p, l);
+            return l;
+        };
+        std::optional<Layout> best;
+        for (double span : {p.ceiling_span, tight}) {
+            if (best && (best->left.empty() || span == p.ceiling_span || best->tops.narrow < 0.5 * best->tops.length)) break;
+            auto l = lay(span, nullptr);
+            if (l && (!best || l->left.size() < best->left.size())) best = std::move(l);
         }
         if (!best) continue;
-        const RegionWalls& w = best->w;
-        const std::vector<CeilingWall>& pieces = best->pieces;
-        const std::vector<Sample>& left = best->left;
         std::vector<Sample> own;
         for (std::size_t i : r.samples) own.push_back(samples[i]);
         // Pricing grows the region's tree twice (for all its samples, and for those the walls
         // leave): the stage's cost. Walls that leave a tree under most of the region only add to it.
-        if (left.size() > most_left * own.size()) continue;
+        if (best->left.size() > most_left * own.size()) continue;
         auto tree_s = [](const SlicerRoute& route, const TreeCount& c) {
             return tree_route_seconds(route, c.island_layers, c.outline_mm, c.hop_mm);
         };
         const TreeCount t = tree_count(own, {});
         const double tree_cura = tree_s(kCuraRoute, t), tree_prusa = tree_s(kPrusaRoute, t);
+        // A layout's seconds on both routes: its walls, and the tree for the samples they leave.
         // Walls that alone cost more than the tree lose whatever the rest costs: its tree is not grown.
-        double walls_cura = walls_route_seconds(kCuraRoute, w, p), walls_prusa = walls_route_seconds(kPrusaRoute, w, p);
-        if (!(walls_cura < tree_cura && walls_prusa < tree_prusa)) continue;
-        const TreeCount rest = tree_count(left, pieces);
-        walls_cura += tree_s(kCuraRoute, rest), walls_prusa += tree_s(kPrusaRoute, rest);
+        auto price = [&](const Layout& l) -> std::optional<std::pair<double, double>> {
+            double cura = walls_route_seconds(kCuraRoute, l.w, p), prusa = walls_route_seconds(kPrusaRoute, l.w, p);
+            if (!(cura < tree_cura && prusa < tree_prusa)) return std::nullopt;
+            const TreeCount rest = tree_count(l.left, l.pieces);
+            return std::pair{cura + tree_s(kCuraRoute, rest), prusa + tree_s(kPrusaRoute, rest)};
+        };
+        auto cost = price(*best);
+        // Where the meander leaves samples at the rows' open ends (a rim, a narrow strip beside
+        // the region), its joins at the ends near them: kept where that is faster on both routes.
+        if (!best->left.empty()) {
+            std::vector<Vec3> near_left;
+            for (const Sample& x : best->left) near_left.push_back(x.p);
+            auto turned = lay(best->span, &near_left);
+            if (turned && turned->left.size() < best->left.size())
+                if (auto c = price(*turned); c && (!cost || (c->first < cost->first && c->second < cost->second)))
+                    best = std::move(turned), cost = c;
+        }
         // Either slicer may print it: walls only where both print them faster.
-        if (!(walls_cura < tree_cura && walls_prusa < tree_prusa)) continue;
+        if (!cost || !(cost->first < tree_cura && cost->second < tree_prusa)) continue;
+        const double walls_cura = cost->first, walls_prusa = cost->second;
+        const std::vector<CeilingWall>& pieces = best->pieces;
         ++out.regions;
         out.tree_cura_s += tree_cura, out.tree_prusa_s += tree_prusa;
         out.walls_cura_s += walls_cura, out.walls_prusa_s += walls_prusa;

@@ -148,6 +148,40 @@ void expect_walls_hold_what_they_take(const Walled& w, const std::string& what) 
 // pieces where they follow a bore), some ending at a rim where the model goes up (nothing holds the
 // rim but the tips and walls), at two spans and sampling distances (at 2 mm sampling the walls'
 // reach lets rows stand at most 3.04 mm apart).
+// A lid lying top up on its locating rim, as enclosure_lid's (tests/data/cad/lid_on_rim.scad): a
+// plate 3 mm over the bed on a frame inset 2.2 mm from its edges, so a 2.2 mm lip runs round the
+// frame outside it; the lip's samples lie along the plate's edges. Rows along x cross the lip at
+// both ends as short stubs. Until 2026-11-26 the joins between the stubs alternated between their
+// outer and inner ends (a meander), so every other gap along the plate's edge was far from a
+// contact (a join 3 mm long is short to `check`: it holds the ceiling at its middle only) and kept
+// its tip: two columns of tips along the lip, an island each on every layer (22 of 167 samples).
+TEST(Ceilings, TheJoinsTurnToTheLipOfALidOnItsRim) {
+    Job job;  // as a user runs it: the pipeline's samples (with its top-up) and choice
+    job.input = test::source_dir() + "/tests/data/cad/lid_on_rim.stl";
+    job.orient = "keep";
+    const Result r = run_job(job);
+    auto on_lip = [](const Vec3& x) { return std::abs(x.x) > 17.8 || std::abs(x.y) > 12.8; };
+    // The lip's samples all go to the walls: the joins stand at the plate's edge, where its
+    // samples are, made one long wall down each side. No tip under the lip.
+    std::size_t lip_tips = 0;
+    for (const Node& n : r.supports.sized.tree.nodes)
+        if (n.kind == NodeKind::Leaf && on_lip(n.p)) ++lip_tips;
+    EXPECT_EQ(lip_tips, 0u);
+    // Down each side of the lip one wall, no comb of stubs across it (each a line of its own to a
+    // slicer) and no ladder of closed cells (each a loop of its own).
+    std::size_t across_lip = 0, along_lip = 0;
+    for (const auto& wall : r.supports.walls) {
+        // In the lip's left or right side (the rows along its ends span the plate).
+        if (std::abs(wall.from.x) < 17.8 || std::abs(wall.to.x) < 17.8 || wall.from.x * wall.to.x < 0) continue;
+        (std::abs(wall.from.x - wall.to.x) < 1e-9 ? along_lip : across_lip) += 1;
+    }
+    EXPECT_EQ(along_lip, 2u);
+    EXPECT_EQ(across_lip, 0u);
+    // And check passes it.
+    const CheckResult c = check_supports(r.model, r.supports.mesh, job.params, {});
+    EXPECT_TRUE(c.ok()) << c.summary();
+}
+
 TEST(Ceilings, WhatTheWallsTakeTheyHoldUnderSlopedAndRoundCeilings) {
     const double pi = 3.14159265358979;
     const std::vector<std::pair<const char*, Mesh>> roofs = {
