@@ -881,6 +881,7 @@ void drop_idle_stubs(const ModelQuery& q, JudgedSurface& surface, const std::vec
                      Layout& l) {
     const double short_top = 2 * coverage_reach(p.sampling_distance);
     const double near = short_top + 2 * coverage_reach(p.sampling_distance) + p.sampling_distance;
+    const CarryReach carry(p);
     for (std::size_t k = l.w.walls.size(); k-- > 0;) {
         const Run& run = l.w.walls[k];
         const Vec3 a = run.top.front(), b = run.top.back();
@@ -893,7 +894,7 @@ void drop_idle_stubs(const ModelQuery& q, JudgedSurface& surface, const std::vec
         const Contacts tops = wall_contacts(q, others, p);
         const Vec3 mid = (a + b) * 0.5;
         const bool idle = std::all_of(l.carried.begin(), l.carried.end(), [&](std::size_t i) {
-            return horizontal_distance(samples[i].p, mid) > near || walls_carry(surface, tops, samples[i].p, p);
+            return horizontal_distance(samples[i].p, mid) > near || walls_carry(surface, tops, samples[i].p, carry);
         });
         if (!idle) continue;
         l.pieces = std::move(others);
