@@ -325,10 +325,10 @@ std::optional<Vec3> beside_blockers(const ModelQuery& model, const Vec3& s, cons
 }
 
 // What holds each sample's overhang up, at the height of that overhang: a live leaf's tip top, a
-// pillar's top, else the sample itself (it rests on material, is bridged, or was given up: where
-// no strut fits, more samples next to it would be given up too). The samples in `lost` (leaves
-// the sweep lost: their strut found no way down) hold nothing up: a leaf beside one starts
-// elsewhere and may get down.
+// pillar's top, else the sample itself (it rests on material, is bridged, or no pillar fits: where
+// no pillar fits, more samples next to it would find none either). The samples in `lost` hold
+// nothing up: leaves the sweep lost (their strut found no way down; a leaf beside one starts
+// elsewhere and may get down) and leaves given up before the tree grew (untipped).
 std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samples, const std::vector<Vec3>& lost = {}) {
     std::vector<Vec3> out, carried = lost;
     for (const auto& n : t.nodes)
@@ -338,6 +338,17 @@ std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samp
     std::sort(carried.begin(), carried.end(), before);
     for (const auto& s : samples)
         if (!std::binary_search(carried.begin(), carried.end(), s.p, before)) out.push_back(s.p);
+    return out;
+}
+
+// The samples whose leaves hang_leaves gave up (no tip fits under it, or its leaf cannot leave
+// the crevice it hangs in): they hold nothing up either. A sample beside one, where the overhang
+// is left beyond reach, may get a tip: the bottom edge of a fold in beast's scan (auto pose),
+// whose upper end takes no tip and whose lower end does.
+std::vector<Vec3> untipped(const SupportTree& hung) {
+    std::vector<Vec3> out;
+    for (const Node& n : hung.nodes)
+        if (n.kind == NodeKind::Dropped) out.push_back(n.contact);
     return out;
 }
 
@@ -581,7 +592,8 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     SupportTree hung;
     auto extra = sw.time("coverage top-up", progress, [&] {
         hung = hang_leaves(*query, r.samples.samples, p, blockers);
-        return samples_beyond_reach(r.model, oo, *query, r.samples, coverers(hung, r.samples.samples), blockers, p);
+        const auto held = coverers(hung, r.samples.samples, untipped(hung));
+        return samples_beyond_reach(r.model, oo, *query, r.samples, held, blockers, p);
     });
     if (!extra.empty()) {
         add_topped_up(r.samples, extra);

@@ -42,6 +42,7 @@ std::array<Vec3, 5> square_points(const Vec3& c, double w) {
 struct Ceiling {
     double drop = 0;
     double over_centre = 0;
+    double lowest = INFINITY;  // the lowest of the model over the square
 };
 
 // nullopt when nothing is above the centre.
@@ -55,6 +56,7 @@ std::optional<Ceiling> ceiling_above(const ModelQuery& model, const std::array<V
         }
         if (i == 0) c.over_centre = hit->point.z;
         c.drop = std::max(c.drop, z - hit->point.z);
+        c.lowest = std::min(c.lowest, hit->point.z);
     }
     return c;
 }
@@ -143,11 +145,14 @@ bool in_open_air(const ModelQuery& model, const Vec3& centre, const std::array<V
 struct Attempt {
     PillarFit fit = PillarFit::NoRoom;
     Pillar pillar;
-    // Lower is better. A level floor counts for more than the side clearance: a pillar that stands
-    // on a corner may break off, one beside a wall only prints fused to it.
-    int rank = 3;
+    // Lower is better. Holding the overhang counts for most: a pillar moved where the overhang
+    // is higher over all of its top holds nothing up. A level floor counts for more than the side
+    // clearance: a pillar that stands on a corner may break off, one beside a wall only prints
+    // fused to it.
+    int rank = 7;
 };
 
+constexpr int kRankAway = 4;      // moved where the overhang over all of its top is higher than its sample
 constexpr int kRankSlope = 2;     // on a slope (air under every corner)
 constexpr int kRankAgainst = 1;   // nearer a wall beside it than tip_side_clearance
 
@@ -172,7 +177,12 @@ Attempt pillar_at(const ModelQuery& model, const Vec3& sample, const Vec3& centr
     if (pl.top.z - pl.bottom.z < p.layer_height) return {PillarFit::TooLow, pl};
     // A foot that would have to stand on its uphill corner (a slope too steep across it) does not fit.
     if (!fl.clear || !prism_is_clear(model, pl.bottom, p.d_min, pl.top, p.tip_diameter)) return {};
-    const int rank = (fl.level ? 0 : kRankSlope) + (pillar_keeps_clearance_beside(model, pl, p) ? 0 : kRankAgainst);
+    // Its top a gap below the sample's height: where the overhang over the whole top is higher
+    // (a pillar moved off the rim of a ridge), nothing is right above the top and it holds
+    // nothing up (`check` finds no contact there).
+    const bool away = ceiling->lowest - sample.z > kLevel;
+    const int rank = (away ? kRankAway : 0) + (fl.level ? 0 : kRankSlope) +
+                     (pillar_keeps_clearance_beside(model, pl, p) ? 0 : kRankAgainst);
     return {PillarFit::Fits, pl, rank};
 }
 
@@ -235,8 +245,16 @@ std::optional<Vec3> place_tip_top(const ModelQuery& model, const Vec3& sample, c
     const double start = sample.z - p.gap - p.tip_length;
     bool any_ceiling = false;
     // The top at `off` from the sample, if its square keeps the gap within a contact's tolerance
-    // and no corner of it is in the model; with the ceiling's height over its centre.
-    auto fit_at = [&](const Vec3& off, double allowed) -> std::optional<std::pair<Vec3, double>> {
+    // and no corner of it is in the model; with the ceiling's height over its centre, and whether
+    // it is away from the overhang: moved where the overhang over all of its square is higher
+    // than the sample, the top (a gap under the sample) has nothing right above it and holds
+    // nothing up (`check` finds no contact there).
+    struct Fit {
+        Vec3 top;
+        double over_centre;
+        bool away;
+    };
+    auto fit_at = [&](const Vec3& off, double allowed) -> std::optional<Fit> {
         const Vec3 c{sample.x + off.x, sample.y + off.y, start};
         auto ceiling = ceiling_above(model, square_points(c, p.tip_diameter), sample.z);
         any_ceiling = any_ceiling || ceiling;
@@ -245,13 +263,18 @@ std::optional<Vec3> place_tip_top(const ModelQuery& model, const Vec3& sample, c
         // A corner of the top in the model (the overhang's edge turning down beside the sample)
         // is no place for a tip.
         if (!square_is_clear(model, top, p.tip_diameter)) return std::nullopt;
-        return std::pair{top, ceiling->over_centre};
+        return Fit{top, ceiling->over_centre, ceiling->lowest - sample.z > kLevel};
     };
-    std::optional<Vec3> nearest_fit;  // taken when no top that fits keeps the side clearance
+    std::optional<Vec3> nearest_fit;   // taken when no top that fits keeps the side clearance
+    std::optional<Vec3> nearest_away;  // taken when no top that holds the overhang fits at all
     for (const auto& off : nearby_offsets()) {
         const auto fit = fit_at(off, allowed_drop(p));
         if (!fit) continue;
-        const auto& [top, over_centre] = *fit;
+        const auto& [top, over_centre, away] = *fit;
+        if (away) {
+            if (!nearest_away) nearest_away = top;
+            continue;
+        }
         // A top moved off a wall must still touch what its sample hangs from: beside a lowest
         // point or under a curve the ceiling rises away from the sample, and a top left at the
         // sample's height would hang below it in air.
@@ -265,8 +288,15 @@ std::optional<Vec3> place_tip_top(const ModelQuery& model, const Vec3& sample, c
     // further than allowed_drop, which allows for a slope along a side of the square. The corner
     // is half a diagonal out: the top may drop that much more, there only. Its nearest corner
     // still keeps the gap, and it stays as near the sample as any other top.
+    std::optional<Vec3> diagonal_away;
     for (const auto& off : nearby_offsets())
-        if (const auto fit = fit_at(off, diagonal_drop(p))) return fit->first;
+        if (const auto fit = fit_at(off, diagonal_drop(p))) {
+            if (!fit->away) return fit->top;
+            if (!diagonal_away) diagonal_away = fit->top;
+        }
+    // Only tops away from the overhang fit: the nearest (a tip there still stands under the model).
+    if (nearest_away) return nearest_away;
+    if (diagonal_away) return diagonal_away;
     // Nothing above at all (a point given in open air): no gap to keep but the sample's own.
     if (!any_ceiling) return sample - Vec3{0, 0, p.gap};
     return std::nullopt;

@@ -48,6 +48,9 @@ PillarPlacement fit_pillar(const ModelQuery& model, const Vec3& sample, const Pa
 // Where no top fits so, a square under a slope running diagonally to it (its downhill corner half a
 // diagonal out, not half a side) may drop that much further: a sample at the upper edge of such a
 // slope (a twisted blade), where uphill is past the edge, still gets its tip.
+// A top away from the overhang (moved where the model over all of its square is higher than the
+// sample: a gap under the sample, it holds nothing up) is taken only when no other fits, in
+// either pass.
 // nullopt where no square near the sample keeps the gap within what a contact allows (a sample
 // on a knife edge or in a crevice narrower than a tip): a tip there would be built into the model.
 std::optional<Vec3> place_tip_top(const ModelQuery& model, const Vec3& sample, const Params& p);

@@ -125,6 +125,34 @@ TEST(FitPillar, InASlotTooNarrowForTheClearanceThePillarStillGoes) {
     EXPECT_TRUE(prism_is_clear(q, placed.pillar.bottom, p.d_min, placed.pillar.top, p.tip_diameter));
 }
 
+TEST(FitPillar, StaysUnderTheKeelItHoldsThoughTheFloorBesideIsLevel) {
+    // A keel 2 mm over the floor: a prism along x whose bottom edge (z 2, y 0) is the overhang,
+    // its sides 75 deg steep. The floor under it is a ramp rising gently (11 deg) towards -y
+    // from that edge's foot: straight under the sample the pillar's foot stands on a slope, a
+    // quarter millimetre towards +y on a level bed. But there the keel is 0.55 mm and more above
+    // every point of the pillar's top: it holds nothing up (check finds no contact there, and
+    // the keel's points beyond reach: the tree example at 80 mm in its auto pose). It stays
+    // under the keel, on the slope.
+    Params p;
+    const double h = 3.73;
+    Mesh m;
+    m.vertices = {{-5, 0, 2}, {5, 0, 2}, {-5, -1, 2 + h}, {5, -1, 2 + h}, {-5, 1, 2 + h}, {5, 1, 2 + h},
+                  {-5, 0, 0}, {5, 0, 0}, {-5, -5, 0}, {5, -5, 0}, {-5, -5, 1}, {5, -5, 1}};
+    m.faces = {{0, 3, 2}, {0, 1, 3}, {0, 4, 5}, {0, 5, 1}, {2, 3, 5}, {2, 5, 4}, {0, 2, 4}, {1, 5, 3},
+               {6, 9, 8}, {6, 7, 9}, {6, 10, 11}, {6, 11, 7}, {8, 9, 11}, {8, 11, 10}, {6, 8, 10}, {7, 11, 9}};
+    ASSERT_GT(signed_volume(m), 0);
+    ModelQuery q(m);
+    auto placed = fit_pillar(q, {0, 0, 2}, p);
+    ASSERT_EQ(placed.fit, PillarFit::Fits);
+    const Pillar& pl = placed.pillar;
+    EXPECT_NEAR(pl.top.y, 0, 1e-9) << "moved off the keel";
+    const auto over_centre = q.first_hit(pl.top, {0, 0, 1});
+    ASSERT_TRUE(over_centre.has_value());
+    EXPECT_LE(std::min(over_centre->distance, nearest_from_corners(q, pl.top, p.tip_diameter, 1)), p.gap + 1e-9)
+        << "the keel right above the top";
+    EXPECT_TRUE(prism_is_clear(q, pl.bottom, p.d_min, pl.top, p.tip_diameter));
+}
+
 TEST(PlaceTipTop, EveryCornerKeepsTheGapUnderASteppedCeiling) {
     // The ceiling steps down by 0.5 mm 0.1 mm beside the sample: a square straight under the
     // sample would need to drop further than a contact allows; it moves to the flat side.
