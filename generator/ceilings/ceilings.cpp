@@ -14,6 +14,17 @@
 #include "query/model_query.hpp"
 
 namespace cs {
+
+double wall_line_seconds(const SlicerRoute& r, double length, double height, double thickness, const Params& p) {
+    return height / p.layer_height * line_route_seconds(r, length, thickness);
+}
+
+double walls_line_seconds(const SlicerRoute& r, const std::vector<CeilingWall>& walls, const Params& p) {
+    double s = 0;
+    for (const CeilingWall& w : walls) s += wall_line_seconds(r, horizontal_distance(w.from, w.to), w.top - w.bottom, w.thickness, p);
+    return s;
+}
+
 namespace {
 
 // Stations along a wall (mm): fine enough that a round ceiling's top steps by well under a layer
@@ -293,7 +304,7 @@ double walls_route_seconds(const SlicerRoute& r, const RegionWalls& w, const Par
         for (std::size_t i = 0; i < run.top.size(); ++i)
             height += run.top[i].z - run.floor[i], thickness = std::max(thickness, run.thickness[i]);
         height /= run.top.size();
-        s += height / p.layer_height * line_route_seconds(r, horizontal_distance(run.top.front(), run.top.back()), thickness);
+        s += wall_line_seconds(r, horizontal_distance(run.top.front(), run.top.back()), height, thickness, p);
     }
     const double layers = w.height / p.layer_height, pieces = static_cast<double>(w.pieces);
     return s + layers * tree_route_seconds(r, pieces, 0, (pieces - 1) * p.ceiling_span);
@@ -386,8 +397,13 @@ RowPlan plan_rows(const ModelQuery& q, const Region& r, const std::vector<Sample
 
 // The region's walls: its planned outer rows, as few rows between as keep them at most `span`
 // apart, and the joins.
+// Rows at most this far inside the outer samples still reach them (a long top holds the ceiling
+// along both its edges; the wall's reach from there, less the inset the outer rows stand at).
+double most_pull(const Params& p) { return wall_reach(p) - tip_side_clearance(p) - 0.5 * kStation; }
+
 RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::vector<Sample>& samples, const Params& p,
-                         double overhang_nz, double span, const std::vector<Vec3>* prefer_near = nullptr) {
+                         double overhang_nz, double span, const std::vector<Vec3>* prefer_near = nullptr,
+                         bool fewer_rows = false) {
     const XyGrid<std::size_t>& grid = plan.grid;
     const Frame& f = plan.f;
     const bool along_x = f.along_x;
@@ -399,8 +415,15 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
     } else {
         // Spaced from the middle out (the outer rows' own walls where they stand beyond the
         // outer samples).
-        const int gaps = static_cast<int>(std::ceil(plan.across / span - 1e-9));
-        const double spacing = plan.across / gaps, mid = plan.mid;
+        int gaps = static_cast<int>(std::ceil(plan.across / span - 1e-9));
+        double spacing = plan.across / gaps;
+        const double mid = plan.mid;
+        // With `fewer_rows`: a row fewer, the span apart, the outer rows pulled in from the outer
+        // samples as far as they still reach them (none where that is not enough).
+        if (fewer_rows) {
+            if (plan.moved || gaps < 2 || 0.5 * (plan.across - (gaps - 1) * span) > most_pull(p)) return {};
+            gaps -= 1, spacing = span;
+        }
         for (int j = 0; j <= gaps; ++j) {
             const double v = plan.moved && j == 0 ? plan.v_lo : plan.moved && j == gaps ? plan.v_hi : mid + (j - 0.5 * gaps) * spacing;
             row_v.push_back(v);
@@ -966,10 +989,10 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         // Rows the span apart; where they leave samples to a tree, also `tight` apart (a slope's
         // staircase of short pieces), keeping the layout that leaves fewer (the first of equals).
         const RowPlan plan = plan_rows(q, r, samples, p, overhang_nz);
-        auto lay = [&](double span, const std::vector<Vec3>* prefer_near) -> std::optional<Layout> {
+        auto lay = [&](double span, const std::vector<Vec3>* prefer_near, bool fewer_rows = false) -> std::optional<Layout> {
             Layout l;
             l.span = span;
-            l.w = region_walls(q, plan, samples, p, overhang_nz, span, prefer_near);
+            l.w = region_walls(q, plan, samples, p, overhang_nz, span, prefer_near, fewer_rows);
             if (l.w.walls.empty() || enters_blocker(l.w.walls, blockers, p)) return std::nullopt;
             if (prefer_near && l.w.turned == 0) return std::nullopt;  // the meander again
             for (const Run& run : l.w.walls)
@@ -1020,6 +1043,11 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
                 if (auto c = price(*turned); c && (!cost || (c->first < cost->first && c->second < cost->second)))
                     best = std::move(turned), cost = c;
         }
+        // A row fewer, the span apart (the outer rows pulled in from the outer samples): where it
+        // carries as much and is faster on both routes.
+        if (auto fewer = lay(best->span, nullptr, true); fewer && fewer->left.size() <= best->left.size())
+            if (auto c = price(*fewer); c && (!cost || (c->first < cost->first && c->second < cost->second)))
+                best = std::move(fewer), cost = c;
         // Either slicer may print it: walls only where both print them faster.
         if (!cost || !(cost->first < tree_cura && cost->second < tree_prusa)) continue;
         const double walls_cura = cost->first, walls_prusa = cost->second;

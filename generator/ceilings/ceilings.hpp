@@ -118,6 +118,13 @@ Ceilings lay_out_ceilings(const ModelQuery& model, const std::vector<Sample>& sa
 // Are walls laid out at all with these parameters: a span, rows within reach of each other, a tree?
 bool ceilings_laid_out(const Params& p);
 
+struct SlicerRoute;
+// Seconds a wall `length` long, `height` tall and `thickness` wide adds on a route: its line
+// (core/slicer_time's line_route_seconds) on every layer it spans. walls_line_seconds: of all the
+// pieces (the lines alone; what the pricing of a region adds for its meanders' islands is left out).
+double wall_line_seconds(const SlicerRoute& r, double length, double height, double thickness, const Params& p);
+double walls_line_seconds(const SlicerRoute& r, const std::vector<CeilingWall>& walls, const Params& p);
+
 // Closed, outward-facing mesh of one wall: a box, w.thickness wide across from-to, bottom to top,
 // its faces as triangles.
 Mesh wall_mesh(const CeilingWall& w);

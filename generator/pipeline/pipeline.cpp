@@ -22,6 +22,7 @@
 #include "render/render.hpp"
 #include "query/model_query.hpp"
 #include "struts/solid_volume.hpp"
+#include "core/slicer_time.hpp"
 #include "tree/slicer_cost.hpp"
 #include "tree/feet.hpp"
 #include "tree/tree.hpp"
@@ -231,6 +232,10 @@ Supports finish_supports(SizedTree grown, const Params& p, const std::vector<int
     s.mesh = bodies_mesh(s.bodies, p.wall_thickness);
     s.volume = solid_volume(s.bodies, p.wall_thickness);
     s.walls = std::move(walls);
+    // The estimate covers the walls' lines too (a region all walls would otherwise cost nothing).
+    s.slicer_cost.cura_seconds += walls_line_seconds(kCuraRoute, s.walls, p);
+    s.slicer_cost.prusa_seconds += walls_line_seconds(kPrusaRoute, s.walls, p);
+    s.slicer_cost.seconds = 0.5 * (s.slicer_cost.cura_seconds + s.slicer_cost.prusa_seconds);
     for (const auto& w : s.walls) {
         const Mesh m = wall_mesh(w);
         s.volume += signed_volume(m);
@@ -325,10 +330,9 @@ std::optional<Vec3> beside_blockers(const ModelQuery& model, const Vec3& s, cons
 }
 
 // What holds each sample's overhang up, at the height of that overhang: a live leaf's tip top, a
-// pillar's top, else the sample itself (it rests on material, is bridged, or no pillar fits: where
-// no pillar fits, more samples next to it would find none either). The samples in `lost` hold
-// nothing up: leaves the sweep lost (their strut found no way down; a leaf beside one starts
-// elsewhere and may get down) and leaves given up before the tree grew (untipped).
+// pillar's top, else the sample itself (it rests on material, or is bridged). The samples in
+// `lost` hold nothing up: leaves the sweep lost (their strut found no way down; a leaf beside one
+// starts elsewhere and may get down) and samples given up before the tree grew (untipped).
 std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samples, const std::vector<Vec3>& lost = {}) {
     std::vector<Vec3> out, carried = lost;
     for (const auto& n : t.nodes)
@@ -341,12 +345,13 @@ std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samp
     return out;
 }
 
-// The samples whose leaves hang_leaves gave up (no tip fits under it, or its leaf cannot leave
-// the crevice it hangs in): they hold nothing up either. A sample beside one, where the overhang
-// is left beyond reach, may get a tip: the bottom edge of a fold in beast's scan (auto pose),
-// whose upper end takes no tip and whose lower end does.
+// The samples hang_leaves gave up (no tip fits under it, its leaf cannot leave the crevice it
+// hangs in, or, too low for a tree, no pillar fits under it): they hold nothing up either. A
+// sample beside one, where the overhang is left beyond reach, may get its support: the bottom
+// edge of a fold in beast's scan (auto pose), whose upper end takes no tip and whose lower end
+// does; a slope 2.1 mm over another in the tree example, where a pillar fits beside the sample.
 std::vector<Vec3> untipped(const SupportTree& hung) {
-    std::vector<Vec3> out;
+    std::vector<Vec3> out = hung.no_pillar;
     for (const Node& n : hung.nodes)
         if (n.kind == NodeKind::Dropped) out.push_back(n.contact);
     return out;

@@ -128,6 +128,7 @@ private:
                 auto fit = hang_pillar(s.p);
                 t_.stats.bridged += fit == PillarFit::TooLow;
                 t_.stats.dropped += fit == PillarFit::NoRoom;
+                if (fit == PillarFit::NoRoom) t_.no_pillar.push_back(s.p);
                 continue;
             }
             const auto placed_top = place_tip_top(model_, s.p, p_);
@@ -669,6 +670,8 @@ SupportTree hang_more_leaves(const ModelQuery& model, SupportTree hung, std::vec
                [&](const Node& a, const Node& b) { return before(a.contact, b.contact); });
     std::merge(hung.pillars.begin(), hung.pillars.end(), added.pillars.begin(), added.pillars.end(),
                std::back_inserter(out.pillars), [&](const Pillar& a, const Pillar& b) { return before(a.sample, b.sample); });
+    std::merge(hung.no_pillar.begin(), hung.no_pillar.end(), added.no_pillar.begin(), added.no_pillar.end(),
+               std::back_inserter(out.no_pillar), before);
     out.stats = hung.stats;
     out.stats.internal += added.stats.internal;
     out.stats.touching += added.stats.touching;

@@ -102,6 +102,7 @@ struct SupportTree {
     std::vector<Node> nodes;
     std::vector<Strut> struts;
     std::vector<Pillar> pillars;
+    std::vector<Vec3> no_pillar;  // samples too low for a tree under which no pillar fits (hang_leaves)
     TreeStats stats;
     GrowOptions grown_with;  // how the sweep grew it
     // The estimate of the tree as size_struts sizes it, where the one who chose the tree computed it

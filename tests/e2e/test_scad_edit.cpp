@@ -58,6 +58,9 @@ struct Tee {
 // The T's plate, low over the bed, gets walls by default (README "Walls under low ceilings"); the
 // tests that edit the tree's struts (omit them, size them by k) ask for the tree.
 const std::string kTreeOnly = "--ceiling-span 0";
+// At the default span the walls carry all of the T's plate (a row fewer, its outer rows pulled in);
+// rows 3 mm apart leave its rim to a tree: a run with struts and walls both.
+const std::string kTreeAndWalls = "--ceiling-span 3";
 
 CheckResult check_of(const std::string& model_stl, const std::string& supports_stl) {
     return check_supports(read_mesh(model_stl), read_mesh(supports_stl, true), Params{}, CheckOptions{});
@@ -293,7 +296,7 @@ TEST(ScadEdit, RegrowAfterEditingKMatchesAFreshRunWithK) {
 }
 
 TEST(ScadEdit, BrokenEditsNameTheLine) {
-    Tee t;
+    Tee t(kTreeOnly);
     const std::string text = read_text(t.scad);
     struct Case {
         std::string start, line, phrase;
@@ -513,7 +516,7 @@ TEST(ScadEdit, ApplyBringsATweakIntoTheSlicerFiles) {
     TempDir d;
     write_stl(d / "tee.stl", t_shape());
     const std::string out = d / "out";
-    ASSERT_EQ(cs(quote(d / "tee.stl") + " --orient keep -q --out " + quote(out)).code, 0);
+    ASSERT_EQ(cs(quote(d / "tee.stl") + " --orient keep -q --out " + quote(out) + " " + kTreeAndWalls).code, 0);
     const std::string model_before = read_text(out + "/tee.model.stl"), report_before = read_text(out + "/tee.report.json");
     const double volume_before = signed_volume(read_mesh(out + "/tee.supports.stl"));
     std::map<std::string, std::string> before;

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 #include "ceilings/ceilings.hpp"
 #include "check/check.hpp"
@@ -180,6 +181,27 @@ TEST(Ceilings, TheJoinsTurnToTheLipOfALidOnItsRim) {
     // And check passes it.
     const CheckResult c = check_supports(r.model, r.supports.mesh, job.params, {});
     EXPECT_TRUE(c.ok()) << c.summary();
+}
+
+// The benchmark's bridge: a 40 x 10 mm deck 5 mm over the bed between two pillars. Rows just
+// inside the outer samples (8.6 mm apart) needed 4 rows at the 3.4 mm span; pulled in by 0.9 mm
+// each (the samples on the deck's edges still within the walls' reach of the outer rows' edges) 3
+// rows the span apart carry the deck too: a quarter fewer lines on every layer (until 2026-11-26
+// four).
+TEST(Ceilings, TheOuterRowsPullInWhereARowFewerCarriesTheDeck) {
+    test::CellGrid g({-22, -20, 20, 22}, {-5, 5}, {0, 5, 7});
+    g.fill({-22, -5, 0}, {-20, 5, 5});
+    g.fill({20, -5, 0}, {22, 5, 5});
+    g.fill({-22, -5, 5}, {22, 5, 7});
+    Walled w = walled(g.mesh());
+    ASSERT_EQ(w.ceilings.regions, 1u);
+    std::set<long> rows;
+    for (const auto& wall : w.ceilings.walls)
+        if (!wall.join) rows.insert(std::lround(100 * wall.from.y));
+    EXPECT_EQ(rows.size(), 3u);
+    for (auto a = rows.begin(), b = std::next(a); b != rows.end(); ++a, ++b) EXPECT_LE(*b - *a, std::lround(100 * w.p.ceiling_span));
+    EXPECT_TRUE(w.ceilings.rest.empty());
+    expect_walls_hold_what_they_take(w, "bridge deck, a row fewer");
 }
 
 TEST(Ceilings, WhatTheWallsTakeTheyHoldUnderSlopedAndRoundCeilings) {

@@ -440,6 +440,27 @@ TEST(HangLeaves, AreTheLeavesAndPillarsTheTreeGrowsFrom) {
     }
 }
 
+// A sample too low for a tree in a slot narrower than a pillar's foot: no pillar fits, and the hung
+// tree lists it (the coverage top-up then counts it as holding nothing up, as a leaf given up, so
+// the overhang it leaves beyond reach gets samples of its own: the tree example in its auto pose,
+// a sample 2.1 mm over a slope where no pillar fits, 0.18 mm2 left beyond reach). Hanging more
+// leaves into the tree keeps the list.
+TEST(HangLeaves, ASampleUnderWhichNoPillarFitsIsListed) {
+    Params p;
+    Mesh m = cs::test::box({-5, -5, 1.5}, {5, 5, 3});
+    append(m, cs::test::box({-5, -5, 0}, {-0.3, 5, 1.5}));
+    append(m, cs::test::box({0.3, -5, 0}, {5, 5, 1.5}));
+    ModelQuery q(m);
+    const Vec3 in_slot{0, 0, 1.5};
+    const SupportTree hung = hang_leaves(q, {{in_slot, SampleKind::Face}}, p);
+    EXPECT_TRUE(hung.pillars.empty());
+    EXPECT_EQ(hung.stats.dropped, 1u);
+    ASSERT_EQ(hung.no_pillar.size(), 1u);
+    EXPECT_EQ(hung.no_pillar[0], in_slot);
+    const SupportTree more = hang_more_leaves(q, hung, {{{-4, 0, 3}, SampleKind::Face}}, p);
+    EXPECT_EQ(more.no_pillar, hung.no_pillar);
+}
+
 // The coverage top-up hangs only its new samples' leaves into the hung tree: node for node,
 // pillar for pillar and count for count what hanging every sample again gives (the tree grown from
 // it, and so every output, is the same). Every other sample is held back and added after.
