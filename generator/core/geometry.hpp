@@ -6,6 +6,7 @@
 #include <array>
 #include <utility>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <numbers>
 #include <vector>
@@ -77,6 +78,28 @@ struct Mesh {
 // the high word.
 inline std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
     return a < b ? (std::uint64_t(a) << 32) | b : (std::uint64_t(b) << 32) | a;
+}
+
+// Sorts (edge_key, index) pairs as std::sort sorts pairs (by key, then index), in about linear
+// time: counted by the edge's lower vertex (the key's high word), then each vertex's few pairs
+// sorted (a mesh's face-edges: a million on a scan, a handful per vertex). Keys whose high words
+// are sparse (far more vertices than pairs) go to std::sort.
+inline void sort_edge_uses(std::vector<std::pair<std::uint64_t, std::uint32_t>>& uses) {
+    std::uint64_t top = 0;
+    for (const auto& u : uses) top = std::max(top, u.first >> 32);
+    if (uses.size() < 64 || top > 4 * uses.size()) {
+        std::sort(uses.begin(), uses.end());
+        return;
+    }
+    std::vector<std::size_t> end(static_cast<std::size_t>(top) + 2, 0);
+    for (const auto& u : uses) ++end[static_cast<std::size_t>(u.first >> 32) + 1];
+    for (std::size_t v = 1; v < end.size(); ++v) end[v] += end[v - 1];
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> out(uses.size());
+    for (const auto& u : uses) out[end[static_cast<std::size_t>(u.first >> 32)]++] = u;
+    for (std::size_t v = 0, begin = 0; v <= top; begin = end[v++])
+        if (end[v] - begin > 1)
+            std::sort(out.begin() + static_cast<std::ptrdiff_t>(begin), out.begin() + static_cast<std::ptrdiff_t>(end[v]));
+    uses = std::move(out);
 }
 
 struct Box3 {

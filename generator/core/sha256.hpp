@@ -9,7 +9,10 @@
 
 namespace cs {
 
-std::string sha256_hex(std::string_view bytes);
+// `path`: the CPU's SHA instructions where it has them (x86-64), else the portable code; tests
+// compare the two. The same digest either way.
+enum class Sha256Path { fastest, portable };
+std::string sha256_hex(std::string_view bytes, Sha256Path path = Sha256Path::fastest);
 // An unreadable file hashes as no bytes (callers read the file themselves first).
 std::string file_sha256(const std::string& path);
 

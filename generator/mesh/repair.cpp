@@ -132,7 +132,7 @@ std::vector<std::uint32_t> faces_across(const Mesh& m, RepairReport& r) {
     std::vector<std::pair<std::uint64_t, std::uint32_t>> uses(3 * nf);  // (edge, face-edge)
     for (std::uint32_t fi = 0; fi < nf; ++fi)
         for (int k = 0; k < 3; ++k) uses[3 * fi + k] = {edge_key(m.faces[fi][k], m.faces[fi][(k + 1) % 3]), 3 * fi + k};
-    std::sort(uses.begin(), uses.end());
+    sort_edge_uses(uses);
     for (size_t i = 0, j; i < uses.size(); i = j) {
         for (j = i + 1; j < uses.size() && uses[j].first == uses[i].first;) ++j;
         if (j - i == 1) ++r.boundary_edges;

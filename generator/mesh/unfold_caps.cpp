@@ -54,7 +54,7 @@ public:
         uses_.reserve(3 * m.faces.size());
         for (std::uint32_t f = 0; f < m.faces.size(); ++f)
             for (int k = 0; k < 3; ++k) uses_.push_back({edge_key(m.faces[f][k], m.faces[f][(k + 1) % 3]), f});
-        std::stable_sort(uses_.begin(), uses_.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+        sort_edge_uses(uses_);  // by edge, then face: each face-edge pushed in face order
     }
     // The faces on the edge, in the order they were met (none: no such edge).
     std::vector<std::uint32_t> faces(std::uint64_t edge) const {

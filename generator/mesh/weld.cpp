@@ -9,12 +9,22 @@ namespace cs {
 Welded weld_vertices(const Mesh& m) {
     const auto& mv = m.vertices;
     const auto n = static_cast<std::uint32_t>(mv.size());
-    std::vector<std::uint32_t> by_coords(n);
-    std::iota(by_coords.begin(), by_coords.end(), 0u);
-    auto key = [&](std::uint32_t i) { return std::make_tuple(mv[i].x, mv[i].y, mv[i].z); };
-    std::sort(by_coords.begin(), by_coords.end(), [&](std::uint32_t a, std::uint32_t b) {
-        return key(a) != key(b) ? key(a) < key(b) : a < b;
+    // Sorted by (x, y, z, index), a total order: the coordinates sorted beside their index (not
+    // indices sorted by coordinates looked up, a cache miss per comparison on a scan).
+    struct Keyed {
+        double x, y, z;
+        std::uint32_t i;
+    };
+    std::vector<Keyed> sorted(n);
+    for (std::uint32_t i = 0; i < n; ++i) sorted[i] = {mv[i].x, mv[i].y, mv[i].z, i};
+    std::sort(sorted.begin(), sorted.end(), [](const Keyed& a, const Keyed& b) {
+        return std::tie(a.x, a.y, a.z) != std::tie(b.x, b.y, b.z) ? std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z)
+                                                                  : a.i < b.i;
     });
+    std::vector<std::uint32_t> by_coords(n);
+    for (std::uint32_t i = 0; i < n; ++i) by_coords[i] = sorted[i].i;
+    sorted = {};
+    auto key = [&](std::uint32_t i) { return std::make_tuple(mv[i].x, mv[i].y, mv[i].z); };
     // Each vertex -> the first vertex with its coordinates (the lowest index of its run).
     std::vector<std::uint32_t> first(n);
     for (std::uint32_t i = 0; i < n; ++i)

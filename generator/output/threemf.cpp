@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <fmt/compile.h>
 #include <fmt/format.h>
 #include <iterator>
 #include <stdexcept>
@@ -74,7 +75,7 @@ void append_vertices(std::string& s, const Mesh& m, const IndexedMesh& im) {
     buf.reserve(60 * im.vertices.size());
     for (std::uint32_t c : im.vertices) {
         const auto& p = m.vertices[c];
-        fmt::format_to(std::back_inserter(buf), "<vertex x=\"{:.6f}\" y=\"{:.6f}\" z=\"{:.6f}\"/>\n", p.x, p.y, p.z);
+        fmt::format_to(std::back_inserter(buf), FMT_COMPILE("<vertex x=\"{:.6f}\" y=\"{:.6f}\" z=\"{:.6f}\"/>\n"), p.x, p.y, p.z);
     }
     s.append(buf.data(), buf.size());
 }
@@ -84,7 +85,7 @@ void append_triangles(std::string& s, const IndexedMesh& im, std::uint32_t offse
     fmt::memory_buffer buf;
     buf.reserve(45 * im.triangles.size());
     for (const auto& t : im.triangles)
-        fmt::format_to(std::back_inserter(buf), "<triangle v1=\"{}\" v2=\"{}\" v3=\"{}\"/>\n", t[0] + offset,
+        fmt::format_to(std::back_inserter(buf), FMT_COMPILE("<triangle v1=\"{}\" v2=\"{}\" v3=\"{}\"/>\n"), t[0] + offset,
                        t[1] + offset, t[2] + offset);
     s.append(buf.data(), buf.size());
 }

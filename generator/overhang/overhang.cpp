@@ -151,7 +151,7 @@ std::vector<EdgeSegment> support_edges(const Mesh& m, const std::vector<char>& c
     edge_face.reserve(m.faces.size() * 3);
     for (std::uint32_t fi = 0; fi < m.faces.size(); ++fi)
         for (int k = 0; k < 3; ++k) edge_face.emplace_back(edge_key(m.faces[fi][k], m.faces[fi][(k + 1) % 3]), fi);
-    std::sort(edge_face.begin(), edge_face.end());
+    sort_edge_uses(edge_face);
     const double sin_c = std::sin(deg_to_rad(o.critical_angle));
     std::vector<EdgeSegment> out;
     std::vector<std::uint32_t> fs;

@@ -42,19 +42,37 @@ struct Interval {
     double x0, x1;
 };
 
-// The inside of one cross-section along each row it spans (even-odd over its crossings).
+// The inside of one cross-section along each row it spans (even-odd over its crossings). Each
+// segment is asked only about the rows near its own y range (a cross-section has a dozen
+// segments, each crossing a row or two of the dozens it spans), with the same test and the same
+// x: the same intervals as asking every segment about every row.
 void row_intervals(const std::vector<Segment>& segs, std::vector<Interval>& out) {
     if (segs.empty()) return;
     double lo = INFINITY, hi = -INFINITY;
     for (const auto& s : segs) lo = std::min({lo, s.y0, s.y1}), hi = std::max({hi, s.y0, s.y1});
-    std::vector<double> xs;
-    for (long r = static_cast<long>(std::ceil(lo / kRowStep - 0.5)); (r + 0.5) * kRowStep <= hi; ++r) {
-        const double y = (r + 0.5) * kRowStep;
-        xs.clear();
-        for (const auto& s : segs)
-            if ((s.y0 >= y) != (s.y1 >= y)) xs.push_back(s.x0 + (y - s.y0) / (s.y1 - s.y0) * (s.x1 - s.x0));
-        std::sort(xs.begin(), xs.end());
-        for (std::size_t i = 0; i + 1 < xs.size(); i += 2) out.push_back({r, xs[i], xs[i + 1]});
+    const long first = static_cast<long>(std::ceil(lo / kRowStep - 0.5));
+    long last = first - 1;  // the last row whose middle is at most hi
+    while ((last + 1.5) * kRowStep <= hi) ++last;
+    if (last < first) return;
+    thread_local std::vector<std::vector<double>> xs;  // per row, its crossings
+    const auto rows = static_cast<std::size_t>(last - first + 1);
+    if (xs.size() < rows) xs.resize(rows);
+    for (std::size_t r = 0; r < rows; ++r) xs[r].clear();
+    for (const auto& s : segs) {
+        const double a = std::min(s.y0, s.y1), b = std::max(s.y0, s.y1);
+        // Rows whose middle y may lie in (a, b], a row to spare each way; the test decides.
+        const long r0 = std::max(first, static_cast<long>(std::floor(a / kRowStep - 0.5)) - 1);
+        const long r1 = std::min(last, static_cast<long>(std::ceil(b / kRowStep - 0.5)) + 1);
+        for (long r = r0; r <= r1; ++r) {
+            const double y = (r + 0.5) * kRowStep;
+            if ((s.y0 >= y) != (s.y1 >= y))
+                xs[static_cast<std::size_t>(r - first)].push_back(s.x0 + (y - s.y0) / (s.y1 - s.y0) * (s.x1 - s.x0));
+        }
+    }
+    for (std::size_t k = 0; k < rows; ++k) {
+        std::vector<double>& row = xs[k];
+        std::sort(row.begin(), row.end());
+        for (std::size_t i = 0; i + 1 < row.size(); i += 2) out.push_back({first + static_cast<long>(k), row[i], row[i + 1]});
     }
 }
 
