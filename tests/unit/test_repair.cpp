@@ -562,3 +562,30 @@ TEST(Placement, EulerAnglesFollowOpenScadRotate) {
     rotation_from_euler_deg(0, 90, 90, R);  // z -> x (about Y), then x -> y (about Z)
     EXPECT_TRUE(near(apply(R, {0, 0, 1}), {0, 1, 0}));
 }
+
+// sort_edge_uses (core/geometry.hpp) orders (edge key, index) pairs as std::sort does: a mesh's
+// face-edges, repeated pairs, and keys too sparse to count.
+TEST(SortEdgeUses, OrdersAsStdSort) {
+    std::uint64_t state = 12345;
+    auto next = [&state] { return state = state * 6364136223846793005ULL + 1442695040888963407ULL, state >> 33; };
+    for (const std::uint32_t vertices : {3u, 50u, 5000u, 4000000000u}) {
+        std::vector<std::pair<std::uint64_t, std::uint32_t>> uses;
+        for (std::uint32_t f = 0; f < 3000; ++f) {
+            const auto a = static_cast<std::uint32_t>(next() % vertices), b = static_cast<std::uint32_t>(next() % vertices);
+            uses.push_back({edge_key(a, b), f});
+            if (f % 7 == 0) uses.push_back({edge_key(a, b), f});  // the same pair twice
+        }
+        auto expected = uses;
+        std::sort(expected.begin(), expected.end());
+        sort_edge_uses(uses);
+        EXPECT_EQ(uses, expected) << vertices;
+    }
+    const Mesh cube = box({0, 0, 0}, {1, 1, 1});
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> uses;
+    for (std::uint32_t f = 0; f < cube.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) uses.push_back({edge_key(cube.faces[f][k], cube.faces[f][(k + 1) % 3]), f});
+    auto expected = uses;
+    std::sort(expected.begin(), expected.end());
+    sort_edge_uses(uses);
+    EXPECT_EQ(uses, expected);
+}
