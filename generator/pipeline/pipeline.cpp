@@ -333,11 +333,19 @@ std::optional<Vec3> beside_blockers(const ModelQuery& model, const Vec3& s, cons
 // pillar's top, else the sample itself (it rests on material, or is bridged). The samples in
 // `lost` hold nothing up: leaves the sweep lost (their strut found no way down; a leaf beside one
 // starts elsewhere and may get down) and samples given up before the tree grew (untipped).
+// Each (sample, what holds it up at its height) pair of the tree's live leaves and pillars: a
+// leaf's tip top, a pillar's top. The one home of that rule for coverers() and tips_of().
+std::vector<std::pair<Vec3, Vec3>> tip_tops(const SupportTree& t) {
+    std::vector<std::pair<Vec3, Vec3>> at;
+    for (const auto& n : t.nodes)
+        if (n.kind == NodeKind::Leaf) at.push_back({n.contact, {n.tip.x, n.tip.y, n.contact.z}});
+    for (const auto& pl : t.pillars) at.push_back({pl.sample, {pl.top.x, pl.top.y, pl.sample.z}});
+    return at;
+}
+
 std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samples, const std::vector<Vec3>& lost = {}) {
     std::vector<Vec3> out, carried = lost;
-    for (const auto& n : t.nodes)
-        if (n.kind == NodeKind::Leaf) out.push_back({n.tip.x, n.tip.y, n.contact.z}), carried.push_back(n.contact);
-    for (const auto& pl : t.pillars) out.push_back({pl.top.x, pl.top.y, pl.sample.z}), carried.push_back(pl.sample);
+    for (const auto& [sample, top] : tip_tops(t)) out.push_back(top), carried.push_back(sample);
     auto before = [](const Vec3& a, const Vec3& b) { return std::tie(a.x, a.y, a.z) < std::tie(b.x, b.y, b.z); };
     std::sort(carried.begin(), carried.end(), before);
     for (const auto& s : samples)
@@ -345,16 +353,13 @@ std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samp
     return out;
 }
 
-// Where the tip hung for a sample holds the overhang up, as coverers() counts it: a leaf's tip top
-// or a pillar's top at the sample's height; the sample itself where it got neither.
+// Where the tip hung for a sample holds the overhang up (tip_tops); the sample itself where it got
+// neither.
 TipAt tips_of(const SupportTree& hung) {
     auto before = [](const std::pair<Vec3, Vec3>& a, const std::pair<Vec3, Vec3>& b) {
         return std::tie(a.first.x, a.first.y, a.first.z) < std::tie(b.first.x, b.first.y, b.first.z);
     };
-    std::vector<std::pair<Vec3, Vec3>> at;
-    for (const auto& n : hung.nodes)
-        if (n.kind == NodeKind::Leaf) at.push_back({n.contact, {n.tip.x, n.tip.y, n.contact.z}});
-    for (const auto& pl : hung.pillars) at.push_back({pl.sample, {pl.top.x, pl.top.y, pl.sample.z}});
+    std::vector<std::pair<Vec3, Vec3>> at = tip_tops(hung);
     std::sort(at.begin(), at.end(), before);
     return [at = std::move(at), before](const Sample& s) {
         const auto it = std::lower_bound(at.begin(), at.end(), std::pair{s.p, s.p}, before);
