@@ -42,11 +42,11 @@ double rotated_overhang_area(const Mesh& m, const std::vector<FaceNormal>& norma
     double area = 0;
     for (size_t i = 0; i < m.faces.size(); ++i) {
         const auto& f = m.faces[i];
-        if (std::max({z[f[0]], z[f[1]], z[f[2]]}) - zmin <= 0.5 * bed_height) continue;
         const auto& [n, len] = normals[i];
         if (len == 0) continue;
         double nz = r.m[2][0] * n.x + r.m[2][1] * n.y + r.m[2][2] * n.z;
-        if (nz / len < nz_limit) area += 0.5 * len;
+        // (Most faces are no overhang: their corners' heights are not looked up.)
+        if (nz / len < nz_limit && std::max({z[f[0]], z[f[1]], z[f[2]]}) - zmin > 0.5 * bed_height) area += 0.5 * len;
     }
     return area;
 }

@@ -144,15 +144,11 @@ bool hanging_keel(const Mesh& m, std::uint32_t f0, std::uint32_t f1, std::uint32
 // the other side turns up), and downward convex ridges. Inside-corner borders (a wall going down
 // from the overhang) become anchors: the wall carries the overhang there.
 std::vector<EdgeSegment> support_edges(const Mesh& m, const std::vector<char>& cls, const OverhangOptions& o,
-                                       OverhangSamples& res) {
-    // Every (edge, face) pair, sorted by edge then face: each edge's faces in a run, edges in a
-    // deterministic order. (A flat sort: a hash map of small vectors cost a scan seconds in malloc.)
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> edge_face;
-    edge_face.reserve(m.faces.size() * 3);
-    for (std::uint32_t fi = 0; fi < m.faces.size(); ++fi)
-        for (int k = 0; k < 3; ++k) edge_face.emplace_back(edge_key(m.faces[fi][k], m.faces[fi][(k + 1) % 3]), fi);
-    sort_edge_uses(edge_face);
+                                       const EdgeUses& edge_face, OverhangSamples& res) {
     const double sin_c = std::sin(deg_to_rad(o.critical_angle));
+    // Faces facing up (or flat): an edge between two is neither a ridge nor a keel (below).
+    std::vector<char> up(m.faces.size());
+    for (std::size_t f = 0; f < m.faces.size(); ++f) up[f] = face_normal_unnormalized(m, m.faces[f]).z >= 0;
     std::vector<EdgeSegment> out;
     std::vector<std::uint32_t> fs;
     for (size_t run = 0, next = 0; run < edge_face.size(); run = next) {
@@ -181,12 +177,12 @@ std::vector<EdgeSegment> support_edges(const Mesh& m, const std::vector<char>& c
         bool open_border = fs.size() == 1 && over == 1;
         bool ridge = false;
         if (fs.size() == 2 && over == 0) {
-            const Vec3 u1 = face_normal_unnormalized(m, m.faces[fs[0]]), u2 = face_normal_unnormalized(m, m.faces[fs[1]]);
             // Both faces facing up (or flat): their normals' sum does not point down (past a
             // critical angle above 0), and a keel's faces face down. Neither a ridge nor a keel;
             // most edges of a mesh end here.
-            if (u1.z >= 0 && u2.z >= 0 && sin_c >= 0) continue;
-            const Vec3 n1 = normalized(u1), n2 = normalized(u2);
+            if (up[fs[0]] && up[fs[1]] && sin_c >= 0) continue;
+            const Vec3 n1 = normalized(face_normal_unnormalized(m, m.faces[fs[0]]));
+            const Vec3 n2 = normalized(face_normal_unnormalized(m, m.faces[fs[1]]));
             ridge = (normalized(n1 + n2).z < -sin_c && convex()) || hanging_keel(m, fs[0], fs[1], a, b, n1, n2, sin_c);
         }
         if (!(border || open_border || ridge)) continue;
@@ -195,6 +191,21 @@ std::vector<EdgeSegment> support_edges(const Mesh& m, const std::vector<char>& c
     }
     return out;
 }
+
+}  // namespace
+
+EdgeUses edge_uses(const Mesh& m) {
+    // Each edge's faces in a run, edges in a deterministic order. (A flat sort: a hash map of
+    // small vectors cost a scan seconds in malloc.)
+    EdgeUses edge_face;
+    edge_face.reserve(m.faces.size() * 3);
+    for (std::uint32_t fi = 0; fi < m.faces.size(); ++fi)
+        for (int k = 0; k < 3; ++k) edge_face.emplace_back(edge_key(m.faces[fi][k], m.faces[fi][(k + 1) % 3]), fi);
+    sort_edge_uses(edge_face);
+    return edge_face;
+}
+
+namespace {
 
 // Vertices lower than all their neighbours (above the first layer).
 std::vector<Vec3> local_minima(const Mesh& m, const OverhangOptions& o) {
@@ -381,7 +392,7 @@ void sort_top_down(std::vector<Sample>& samples) {
     });
 }
 
-OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const ModelQuery* model) {
+OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const ModelQuery* model, const EdgeUses* edges) {
     OverhangSamples res;
     const double s = o.sampling_distance, reach = coverage_reach(s);
     auto cls = classify_faces(m, o);
@@ -392,7 +403,9 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
     // from it, as from an inside corner (`check` judges it so at the same lattice points).
     CoverGrid lattice{reach, o.critical_angle}, grid{lean_reach(o), o.critical_angle};
     std::vector<Vec3> lattice_points = lattice_samples(m, cls, s, res);
-    res.edges = support_edges(m, cls, o, res);
+    EdgeUses own;
+    if (!edges) own = edge_uses(m);
+    res.edges = support_edges(m, cls, o, edges ? *edges : own, res);
     for (const auto& a : res.anchors) grid.add(a);
     const Demand demand = coverage_demand(m, cls, res.edges, o, kEdgeStepOfReach);
     // Holes and slots the print bridges: the anchors (at the lean reach) carry all their lattice

@@ -23,6 +23,8 @@
 // the lattice cover at the full reach (there every point is within reach of a corner).
 #pragma once
 
+#include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/geometry.hpp"
@@ -100,9 +102,18 @@ std::vector<char> classify_faces(const Mesh& m, const OverhangOptions& o);
 // Lattice samples of one triangle (projected to XY), by the top-left rule; z from its plane.
 void rasterize_triangle(const Vec3& a, const Vec3& b, const Vec3& c, double spacing, std::vector<Vec3>& out);
 
+// Every (edge, face) pair of the mesh's faces (edge_key of its two vertices, the face's index),
+// sorted by edge, then face: where sample_overhangs finds each edge's faces. It depends on the
+// faces alone, so the orientation search makes it once for all its poses (each the same faces
+// with the vertices turned).
+using EdgeUses = std::vector<std::pair<std::uint64_t, std::uint32_t>>;
+EdgeUses edge_uses(const Mesh& m);
+
 // All support points of the placed model. With `model` (an index of the same mesh), points resting
 // on material below need no sample; without it every point is judged as hanging in the air.
-OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const ModelQuery* model = nullptr);
+// `edges`: edge_uses of a mesh with m's faces (made here when null).
+OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const ModelQuery* model = nullptr,
+                                 const EdgeUses* edges = nullptr);
 
 // Sorts samples as sample_overhangs does: top down, ties by x then y (deterministic).
 void sort_top_down(std::vector<Sample>& samples);

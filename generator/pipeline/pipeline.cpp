@@ -103,12 +103,14 @@ Orientation orient_by_support(const Mesh& scaled, const Params& p, const std::st
     std::unique_ptr<const ModelQuery> as_given;
     if (scaled.faces.size() > kIndexOnceTriangles && parse_orient(orient).mode == OrientMode::automatic)
         as_given = std::make_unique<const ModelQuery>(scaled);
+    // Every pose has the model's faces: their edges sorted once.
+    const EdgeUses edges = parse_orient(orient).mode == OrientMode::automatic ? edge_uses(scaled) : EdgeUses{};
     // A user's support blockers are in the chosen pose's coordinates: no pose is judged with them.
     return choose_orientation(scaled, p, orient, [&](const Mesh& rotated, const Rotation& rotation) {
         Placement pl;
         Rotation id;
         Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
-        auto samples = sample_overhangs(placed, coarse_oo);
+        auto samples = sample_overhangs(placed, coarse_oo, nullptr, &edges);
         // What finish_supports computes of the volume, without the mesh a pose is not judged by.
         const auto q = as_given ? std::make_unique<const ModelQuery>(placed, *as_given, rotation.m, pl.translation)
                                 : std::make_unique<const ModelQuery>(placed);

@@ -646,3 +646,39 @@ TEST(Covers, CoverAndWithinReachAnswerAsCoversAndHypot) {
         }
     }
 }
+
+namespace {
+
+// The orientation search sorts the model's edges once (edge_uses) and hands them to every pose's
+// sampling: the samples must be those the sampling finds sorting them itself, in every pose.
+TEST(EdgeUses, SortedOnceTheySampleEachPoseAsSortedThere) {
+    const Mesh m = test::keel_shape();
+    const EdgeUses edges = edge_uses(m);
+    EdgeUses sorted;
+    for (std::uint32_t f = 0; f < m.faces.size(); ++f)
+        for (int k = 0; k < 3; ++k) sorted.emplace_back(edge_key(m.faces[f][k], m.faces[f][(k + 1) % 3]), f);
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_EQ(edges, sorted);
+    OverhangOptions o;
+    o.sampling_distance = 1.0;
+    std::size_t total = 0;
+    for (const Vec3& axis : {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{1, 1, 0}}) {
+        Mesh turned = m;  // the same faces, the vertices turned 90 degrees about `axis`
+        const Vec3 a = normalized(axis);
+        for (Vec3& v : turned.vertices) v = a * dot(a, v) + cross(a, v);
+        const double floor = bounding_box(turned).min.z;
+        for (Vec3& v : turned.vertices) v.z -= floor;  // standing on the bed
+        const OverhangSamples own = sample_overhangs(turned, o), given = sample_overhangs(turned, o, nullptr, &edges);
+        ASSERT_EQ(own.samples.size(), given.samples.size());
+        total += own.samples.size();
+        for (std::size_t i = 0; i < own.samples.size(); ++i) {
+            EXPECT_TRUE(own.samples[i].p == given.samples[i].p) << i;
+            EXPECT_EQ(own.samples[i].kind, given.samples[i].kind) << i;
+        }
+        EXPECT_EQ(own.ridge_edges, given.ridge_edges);
+        EXPECT_EQ(own.edges.size(), given.edges.size());
+    }
+    EXPECT_GT(total, 20u);  // the poses have overhangs to sample
+}
+
+}  // namespace
