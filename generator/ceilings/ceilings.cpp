@@ -143,10 +143,29 @@ std::vector<Region> free_regions(const ModelQuery& q, const std::vector<Sample>&
     return regions;
 }
 
-// A row or join is laid in (u, v) coordinates: u along it, v across. `along_x` says which is x.
+// A row or join is laid in (u, v) coordinates: u along it, v across. Rows run along x (u = x,
+// v = y), along y (u = y, v = x), or along any horizontal direction `d` (v along `n`, d turned a
+// quarter counter-clockwise). The axes' frames are computed as such (no rounding).
 struct Frame {
-    bool along_x;
-    Vec3 at(double u, double v, double z) const { return along_x ? Vec3{u, v, z} : Vec3{v, u, z}; }
+    enum Axis { x, y, any } axis = x;
+    Vec3 d{1, 0, 0}, n{0, 1, 0};
+    static Frame along(double angle) {
+        Frame f;
+        f.axis = any, f.d = {std::cos(angle), std::sin(angle), 0}, f.n = {-f.d.y, f.d.x, 0};
+        return f;
+    }
+    static Frame along_axis(bool along_x) {
+        Frame f;
+        if (!along_x) f.axis = y, f.d = {0, 1, 0}, f.n = {1, 0, 0};
+        return f;
+    }
+    Vec3 at(double u, double v, double z) const {
+        if (axis == x) return {u, v, z};
+        if (axis == y) return {v, u, z};
+        return {u * d.x + v * n.x, u * d.y + v * n.y, z};
+    }
+    double u(const Vec3& a) const { return axis == x ? a.x : axis == y ? a.y : a.x * d.x + a.y * d.y; }
+    double v(const Vec3& a) const { return axis == x ? a.y : axis == y ? a.x : a.x * n.x + a.y * n.y; }
 };
 
 // The floor and top of a wall at one station: the top a gap under the lowest ceiling over its
@@ -233,8 +252,6 @@ std::vector<Run> walls_along(const ModelQuery& q, const XyGrid<std::size_t>& reg
     return out;
 }
 
-double coord(const Vec3& a, bool x) { return x ? a.x : a.y; }
-
 // A join between rows at v_a and v_b, at u: the wall across, or nothing where it does not fit.
 std::optional<Run> join_at(const ModelQuery& q, const XyGrid<std::size_t>& region, const std::vector<Sample>& samples,
                            const Frame& f, double u, double v_a, double v_b, const Params& p, double overhang_nz,
@@ -259,28 +276,26 @@ constexpr double kMaxCut = 1.5;
 
 // Can the row (stations in increasing u) end at u = `end` on that side, cutting at most kMaxCut,
 // without losing its other end?
-bool can_end_at(const Run& w, double end, bool along_x, bool high_end) {
-    const double first = coord(w.top.front(), along_x), last = coord(w.top.back(), along_x);
+bool can_end_at(const Run& w, double end, const Frame& f, bool high_end) {
+    const double first = f.u(w.top.front()), last = f.u(w.top.back());
     if (high_end) return end <= last + 1e-9 && last - end <= kMaxCut && end - first >= kMinWall;
     return end >= first - 1e-9 && end - first <= kMaxCut && last - end >= kMinWall;
 }
 
 // Cuts the row to end at u = `end` on that side; the new end's top is the lower, its floor the
 // higher, of the stations around it (the ceiling between them is not known finer).
-void end_at(Run& w, double end, bool along_x, bool high_end) {
+void end_at(Run& w, double end, const Frame& f, bool high_end) {
     Run kept;
     kept.join = w.join;
     double z = INFINITY, floor = -INFINITY, thickness = 0;
     for (std::size_t i = 0; i < w.top.size(); ++i) {
-        const double u = coord(w.top[i], along_x);
+        const double u = f.u(w.top[i]);
         const bool inside = high_end ? u < end - 1e-9 : u > end + 1e-9;
         if (std::abs(u - end) < kStation - 1e-9)
             z = std::min(z, w.top[i].z), floor = std::max(floor, w.floor[i]), thickness = std::max(thickness, w.thickness[i]);
         if (inside) kept.top.push_back(w.top[i]), kept.floor.push_back(w.floor[i]), kept.thickness.push_back(w.thickness[i]);
     }
-    Vec3 cut = w.top.front();
-    (along_x ? cut.x : cut.y) = end;
-    cut.z = z;
+    const Vec3 cut = f.at(end, f.v(w.top.front()), z);
     if (high_end) kept.top.push_back(cut), kept.floor.push_back(floor), kept.thickness.push_back(thickness);
     else
         kept.top.insert(kept.top.begin(), cut), kept.floor.insert(kept.floor.begin(), floor),
@@ -337,6 +352,48 @@ bool rows_along_x(const Region& r, const XyGrid<std::size_t>& grid, const std::v
     return r.box.max.x - r.box.min.x >= r.box.max.y - r.box.min.y;
 }
 
+// The direction between x and y along which the region's ceiling changes height least (a bore or
+// tunnel whose axis runs diagonally, a sloped roof whose contour lines do, a twisted blade's
+// underside along its length), where rows along it would be level and rows along `axis` (the
+// axis rows_along_x chose) would not: the slope at each sample is the slope of the face of the
+// ceiling right above it (as ceiling_near finds it), and the direction is the one of least mean
+// squared slope over the region's samples (the smaller principal direction of the slopes). Given
+// where it is more than kLevelTurn from the axis, and a sampling distance along the axis changes
+// height by more than half a layer more than along it (rows_along_x's threshold) and by more than
+// kLevelContrast times as much: the ceiling is level along it, not merely less curved (a curved
+// organic underside has no level direction; rows there stay along an axis).
+constexpr double kLevelTurn = 5.0;  // degrees
+constexpr double kLevelContrast = 2.0;
+
+std::optional<double> level_direction(const ModelQuery& q, const Region& r, const std::vector<Sample>& samples,
+                                      const Params& p, const Frame& axis) {
+    const double sd = p.sampling_distance, rise = same_surface_rise(p, sd);
+    const double overhang_nz = -std::sin(deg_to_rad(p.critical_angle));
+    double mxx = 0, mxy = 0, myy = 0;
+    std::size_t n = 0;
+    for (std::size_t i : r.samples) {
+        const Vec3& a = samples[i].p;
+        auto hit = q.first_hit({a.x, a.y, a.z - rise}, {0, 0, 1});
+        if (!hit || hit->point.z > a.z + rise) continue;
+        const Vec3 f = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
+        const double l = norm(f);
+        if (!(l > 0) || f.z / l > overhang_nz) continue;
+        const double gx = -f.x / f.z, gy = -f.y / f.z;  // the face's rise per mm along x and y
+        mxx += gx * gx, mxy += gx * gy, myy += gy * gy, ++n;
+    }
+    if (n < kMinRegion) return std::nullopt;
+    // The steepest direction's angle; the level one is a quarter turn from it.
+    const double level = 0.5 * std::atan2(2 * mxy, mxx - myy) + 0.5 * std::numbers::pi;
+    const Vec3 d{std::cos(level), std::sin(level), 0};
+    auto change = [&](const Vec3& e) {  // RMS change over a sampling distance along e
+        return sd * std::sqrt(std::max(0.0, (mxx * e.x * e.x + 2 * mxy * e.x * e.y + myy * e.y * e.y) / n));
+    };
+    const double turn = rad_to_deg(std::acos(std::min(1.0, std::abs(dot(d, axis.d)))));
+    const double across = change(axis.d), along = change(d);
+    if (turn <= kLevelTurn || across - along <= 0.5 * p.layer_height || across <= kLevelContrast * along) return std::nullopt;
+    return level;
+}
+
 // Where a region's rows run (rows_along_x), and its outer rows, which do not depend on the span:
 // as far out as walls stand along them (as long as a row just inside the outer samples would):
 // where the ceiling goes on past the outer samples (a bore's or tunnel's sides beyond the last
@@ -354,14 +411,16 @@ struct RowPlan {
     double mid = 0, across = 0;  // the rows' middle and the outer rows' distance
 };
 
-RowPlan plan_rows(const ModelQuery& q, const Region& r, const std::vector<Sample>& samples, const Params& p,
-                  double overhang_nz) {
-    XyGrid<std::size_t> grid(p.sampling_distance);
-    for (std::size_t i : r.samples) grid.insert(samples[i].p, i);
-    const bool along_x = rows_along_x(r, grid, samples, p);
-    const Frame f{along_x};
+RowPlan plan_rows(const ModelQuery& q, const Region& r, XyGrid<std::size_t> grid, const Frame& f,
+                  const std::vector<Sample>& samples, const Params& p, double overhang_nz) {
     const double inset = 0.5 * p.wall_thickness + tip_side_clearance(p) + 0.5 * kStation;
-    const double u0 = coord(r.box.min, along_x) - p.sampling_distance, u1 = coord(r.box.max, along_x) + p.sampling_distance;
+    // The region's extent across and along the rows (its box, in the axes' frames).
+    double lo_u = INFINITY, hi_u = -INFINITY, lo_v = INFINITY, hi_v = -INFINITY;
+    for (std::size_t i : r.samples) {
+        const Vec3& a = samples[i].p;
+        lo_u = std::min(lo_u, f.u(a)), hi_u = std::max(hi_u, f.u(a)), lo_v = std::min(lo_v, f.v(a)), hi_v = std::max(hi_v, f.v(a));
+    }
+    const double u0 = lo_u - p.sampling_distance, u1 = hi_u + p.sampling_distance;
     auto row_length = [](const std::vector<Run>& runs) {
         double l = 0;
         for (const Run& w : runs) l += horizontal_distance(w.top.front(), w.top.back());
@@ -382,7 +441,6 @@ RowPlan plan_rows(const ModelQuery& q, const Region& r, const std::vector<Sample
         }
         return std::pair{v, best};
     };
-    const double lo_v = coord(r.box.min, !along_x), hi_v = coord(r.box.max, !along_x);
     if (hi_v - lo_v - 2 * inset <= 0) {
         const double v = 0.5 * (lo_v + hi_v);
         auto runs = walls_along(q, grid, samples, f, v, u0, u1, p, overhang_nz);
@@ -407,7 +465,6 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
                          bool fewer_rows = false) {
     const XyGrid<std::size_t>& grid = plan.grid;
     const Frame& f = plan.f;
-    const bool along_x = f.along_x;
     std::vector<std::vector<Run>> by_row;
     std::vector<double> row_v;
     if (plan.v_hi == plan.v_lo) {
@@ -446,7 +503,7 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
         const Vec3 ja = f.at(u, row_v[j], 0), jb = f.at(u, row_v[j + 1], 0);
         double d = INFINITY;
         for (const Vec3& x : *prefer_near) {
-            const double t = std::clamp((coord(x, !along_x) - row_v[j]) / (row_v[j + 1] - row_v[j]), 0.0, 1.0);
+            const double t = std::clamp((f.v(x) - row_v[j]) / (row_v[j + 1] - row_v[j]), 0.0, 1.0);
             d = std::min(d, horizontal_distance(x, ja + (jb - ja) * t));
         }
         return d;
@@ -455,8 +512,8 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
         for (std::size_t a = 0; a < by_row[j].size(); ++a)
             for (std::size_t b = 0; b < by_row[j + 1].size(); ++b) {
                 const auto &wa = by_row[j][a].top, &wb = by_row[j + 1][b].top;
-                const double a0 = coord(wa.front(), along_x), a1 = coord(wa.back(), along_x);
-                const double b0 = coord(wb.front(), along_x), b1 = coord(wb.back(), along_x);
+                const double a0 = f.u(wa.front()), a1 = f.u(wa.back());
+                const double b0 = f.u(wb.front()), b1 = f.u(wb.back());
                 const double lo = std::max(a0, b0), hi = std::min(a1, b1);
                 if (hi - lo < kMinWall) continue;
                 // The join's outer face is flush with the rows' ends, which are cut back to it: a
@@ -473,11 +530,11 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
                 for (int k = 0; k < 4; ++k) {
                     const double u = high_end ? hi - half - k * kStation : lo + half + k * kStation;
                     const double end = high_end ? u + half : u - half;
-                    if (!can_end_at(by_row[j][a], end, along_x, high_end) || !can_end_at(by_row[j + 1][b], end, along_x, high_end))
+                    if (!can_end_at(by_row[j][a], end, f, high_end) || !can_end_at(by_row[j + 1][b], end, f, high_end))
                         break;
                     if (auto w = join_at(q, grid, samples, f, u, row_v[j], row_v[j + 1], p, overhang_nz, prefer_near != nullptr)) {
-                        end_at(by_row[j][a], end, along_x, high_end);
-                        end_at(by_row[j + 1][b], end, along_x, high_end);
+                        end_at(by_row[j][a], end, f, high_end);
+                        end_at(by_row[j + 1][b], end, f, high_end);
                         out.walls.push_back(*w);
                         joined[j][a] = joined[j + 1][b] = 1;
                         ++joins;
@@ -901,8 +958,9 @@ void release_held(JudgedSurface& surface, const Contacts& contacts, const std::v
 // held along the wall's lower edge only. At the span, rows need long tops held along both edges.
 // Tried where at least half the walls' length is held so narrowly and rows the span apart leave
 // samples to a tree. (Rows
-// along the most level direction between x and y were tried too: on the tuning models' slopes
-// and on tilted planes they left more samples than these, at both distances.)
+// along the most level direction between x and y leave more than these on a tilted plane over an
+// axis-aligned floor plan, at both distances: level_direction's rows are laid out beside the
+// axis' and kept only where they leave fewer.)
 constexpr double kTightRows = 0.9;
 
 // Pieces end to end along one line, with the same top, floor and thickness (a chain of joins down a
@@ -1054,8 +1112,18 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
     for (const Region& r : regions) {
         // Rows the span apart; where they leave samples to a tree, also `tight` apart (a slope's
         // staircase of short pieces), keeping the layout that leaves fewer (the first of equals).
-        const RowPlan plan = plan_rows(q, r, samples, p, overhang_nz);
-        auto lay = [&](double span, const std::vector<Vec3>* prefer_near, bool fewer_rows = false) -> std::optional<Layout> {
+        XyGrid<std::size_t> grid(p.sampling_distance);
+        for (std::size_t i : r.samples) grid.insert(samples[i].p, i);
+        // Rows along x or y (rows_along_x); where the ceiling is level along a direction between
+        // them (level_direction), also along that, keeping the rows that leave fewer samples (the
+        // axis' of equals: a region whose rims run along the axes, a tilted rectangle, leaves
+        // triangles at the rows' ends that no row reaches and rows no join fits between).
+        const Frame axis = Frame::along_axis(rows_along_x(r, grid, samples, p));
+        std::vector<RowPlan> plans;
+        if (auto d = level_direction(q, r, samples, p, axis)) plans.push_back(plan_rows(q, r, grid, Frame::along(*d), samples, p, overhang_nz));
+        plans.insert(plans.begin(), plan_rows(q, r, std::move(grid), axis, samples, p, overhang_nz));
+        const RowPlan* chosen = &plans.front();
+        auto lay = [&](const RowPlan& plan, double span, const std::vector<Vec3>* prefer_near, bool fewer_rows = false) -> std::optional<Layout> {
             Layout l;
             l.span = span;
             l.w = region_walls(q, plan, samples, p, overhang_nz, span, prefer_near, fewer_rows);
@@ -1080,10 +1148,14 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
             return l;
         };
         std::optional<Layout> best;
-        for (double span : {p.ceiling_span, tight}) {
-            if (best && (best->left.empty() || span == p.ceiling_span || best->tops.narrow < 0.5 * best->tops.length)) break;
-            auto l = lay(span, nullptr);
-            if (l && (!best || l->left.size() < best->left.size())) best = std::move(l);
+        for (const RowPlan& plan : plans) {
+            std::optional<Layout> mine;
+            for (double span : {p.ceiling_span, tight}) {
+                if (mine && (mine->left.empty() || span == p.ceiling_span || mine->tops.narrow < 0.5 * mine->tops.length)) break;
+                auto l = lay(plan, span, nullptr);
+                if (l && (!mine || l->left.size() < mine->left.size())) mine = std::move(l);
+            }
+            if (mine && (!best || mine->left.size() < best->left.size())) best = std::move(mine), chosen = &plan;
         }
         if (!best) continue;
         std::vector<Sample> own;
@@ -1110,14 +1182,14 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         if (!best->left.empty()) {
             std::vector<Vec3> near_left;
             for (const Sample& x : best->left) near_left.push_back(x.p);
-            auto turned = lay(best->span, &near_left);
+            auto turned = lay(*chosen, best->span, &near_left);
             if (turned && turned->left.size() < best->left.size())
                 if (auto c = price(*turned); c && (!cost || (c->first < cost->first && c->second < cost->second)))
                     best = std::move(turned), cost = c;
         }
         // A row fewer, the span apart (the outer rows pulled in from the outer samples): where it
         // carries as much and is faster on both routes.
-        if (auto fewer = lay(best->span, nullptr, true); fewer && fewer->left.size() <= best->left.size())
+        if (auto fewer = lay(*chosen, best->span, nullptr, true); fewer && fewer->left.size() <= best->left.size())
             if (auto c = price(*fewer); c && (!cost || (c->first < cost->first && c->second < cost->second)))
                 best = std::move(fewer), cost = c;
         // Either slicer may print it: walls only where both print them faster.

@@ -13,7 +13,9 @@
 //     rows      at most ceiling_span apart (no walls where that is more than twice the walls'
 //               reach and a wall: nothing between two rows would be carried), where the ceiling is level (along x or y, whichever
 //               changes height less, so a sloping or round ceiling gets long flat pieces; else
-//               along the longer side); the outer rows as far out as walls stand along them (a
+//               along the longer side; where the faces over the samples are level along a
+//               direction between x and y, a diagonal bore or a twisted blade, rows along that
+//               too, kept where they leave fewer samples); the outer rows as far out as walls stand along them (a
 //               bore's or tunnel's ceiling goes on past its outer samples), else just inside the
 //               outer samples; where rows the span apart leave samples, also rows 0.9 x twice the
 //               walls' reach apart (a slope's staircase is held at each piece's middle only), the

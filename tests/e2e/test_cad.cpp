@@ -233,7 +233,7 @@ INSTANTIATE_TEST_SUITE_P(Corpus, CadPart,
                          ::testing::Values(Part{"slots", 1.0, true}, Part{"tilted_slots", 1.0, true},
                                            Part{"low_overhangs", 1.0, true}, Part{"bracket", 1.0, true}, Part{"thread", 4.0},
                                            Part{"box_lid", 1.0, true}, Part{"cavity", 1.0, true},
-                                           Part{"first_layer"}),
+                                           Part{"first_layer"}, Part{"diagonal_tunnel"}),
                          [](const auto& info) { return info.param.name; });
 
 // The same properties as a tool for any output: CS_STRICT_MODEL=m.model.stl

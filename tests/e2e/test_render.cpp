@@ -151,14 +151,36 @@ TEST(Render, MissingModelFileFailsClearly) {
     EXPECT_FALSE(std::filesystem::exists(t.dir / "tee.union.stl"));
 }
 
+// Walls turned to a ceiling level along 30 degrees (tests/data/cad/diagonal_tunnel: walls only,
+// no tree): the SCAD's walls render as the support mesh's, and the union is as big as model and
+// walls (they overlap only where a join meets a row).
+// The generator run on `input` (kept pose) with --render into `d`: the union it rendered, its
+// shells watertight.
+Mesh rendered_union(const TempDir& d, const std::string& input, const std::string& name) {
+    auto r = run(quote(cli()) + " " + quote(input) + " --orient keep --render -q --out " + quote(d.path));
+    EXPECT_EQ(r.code, 0) << r.out;
+    Mesh u = read_mesh(d / (name + ".union.stl"));
+    for (const auto& shell : split_shells(u)) EXPECT_TRUE(is_watertight(shell));
+    return u;
+}
+
+TEST(Render, TurnedWallsRenderAsTheSupportMesh) {
+    if (any_openscad().empty()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
+    TempDir d;
+    const Mesh u = rendered_union(d, source_dir() + "/tests/data/cad/diagonal_tunnel.stl", "diagonal_tunnel");
+    std::ifstream rep(d / "diagonal_tunnel.report.json");
+    const auto j = nlohmann::json::parse(rep);
+    ASSERT_GT(j["supports"]["ceiling_walls"].get<int>(), 0) << "not vacuous: the tunnel gets walls";
+    const double model = signed_volume(read_mesh(d / "diagonal_tunnel.model.stl"));
+    const double walls = signed_volume(read_mesh(d / "diagonal_tunnel.supports.stl"));
+    EXPECT_NEAR(signed_volume(u), model + walls, 0.005 * (model + walls));
+    EXPECT_GT(signed_volume(u), model + 0.9 * walls);
+}
+
 TEST(Render, BundledExampleEndToEnd) {
     if (any_openscad().empty()) CS_SKIP_OR_FAIL_IN_CI("no OpenSCAD");
     TempDir d;
-    auto r = run(quote(cli()) + " " + quote(source_dir() + "/examples/models/arches.stl") +
-                 " --orient keep --render -q --out " + quote(d.path));
-    ASSERT_EQ(r.code, 0) << r.out;
-    Mesh u = read_mesh(d / "arches.union.stl");
-    for (const auto& shell : split_shells(u)) EXPECT_TRUE(is_watertight(shell));
+    const Mesh u = rendered_union(d, source_dir() + "/examples/models/arches.stl", "arches");
     EXPECT_GT(signed_volume(u), signed_volume(read_mesh(d / "arches.model.stl")));
 }
 

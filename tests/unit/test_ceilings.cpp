@@ -462,3 +462,70 @@ TEST(Ceilings, SamplesBetweenTheWallsAndARimTheRimsTipsHoldGoToTheWalls) {
     EXPECT_LT(w.ceilings.rest.size(), w.samples.samples.size() / 2);
     expect_walls_hold_what_they_take(w, "tapering roof");
 }
+
+namespace {
+
+// The mesh turned `deg` degrees counter-clockwise about the z axis (through the origin).
+Mesh turned(Mesh m, double deg) {
+    const double c = std::cos(deg_to_rad(deg)), s = std::sin(deg_to_rad(deg));
+    for (auto& v : m.vertices) v = {c * v.x - s * v.y, s * v.x + c * v.y, v.z};
+    return m;
+}
+
+// Of the rows (joins left out): their total length, and the length of those within `within`
+// degrees of the direction `deg` (either way along it).
+std::pair<double, double> rows_along(const std::vector<CeilingWall>& walls, double deg, double within) {
+    double all = 0, along = 0;
+    const Vec3 d{std::cos(deg_to_rad(deg)), std::sin(deg_to_rad(deg)), 0};
+    for (const CeilingWall& c : walls) {
+        if (c.join) continue;
+        const double l = horizontal_distance(c.from, c.to);
+        all += l;
+        if (std::abs(dot(c.to - c.from, d)) / l >= std::cos(deg_to_rad(within))) along += l;
+    }
+    return {all, along};
+}
+
+}  // namespace
+
+// The tunnel turned 30 degrees: its ceiling is level along 30 degrees, and rows along x or y would
+// cross its curve as a staircase of short pieces, each holding the ceiling at its middle only. The
+// rows run along 30 degrees (before 2026-11-26 only along x or y): a few long pieces, every sample
+// of the tunnel's crown carried, and `check` finds held all that a tip at every sample holds.
+TEST(Ceilings, ACeilingLevelAlongThirtyDegreesGetsRowsAlongThirtyDegrees) {
+    const Walled straight = walled(tunnel());
+    const Walled w = walled(turned(tunnel(), 30));
+    ASSERT_FALSE(w.ceilings.walls.empty());
+    const auto [all, along] = rows_along(w.ceilings.walls, 30, 0.5);
+    EXPECT_GT(along, 0.95 * all);
+    EXPECT_GT(all, 60);  // long rows along the tunnel (30 mm long)
+    // As few pieces as the tunnel along x gets, and as many samples carried.
+    EXPECT_LE(w.ceilings.walls.size(), straight.ceilings.walls.size() + 2);
+    EXPECT_GE(w.ceilings.covered + 2, straight.ceilings.covered);
+    expect_walls_hold_what_they_take(w, "tunnel at 30 degrees");
+}
+
+// check/: a wall turned 30 degrees under a deck turned with it: its long top is a contact along its
+// whole length, as the wall along x is (AWallsLongTopIsAContactAlongItsWholeLength).
+TEST(CheckWalls, ATurnedWallsLongTopIsAContactAlongItsWholeLength) {
+    Params p;
+    for (double deg : {0.0, 30.0, 120.0}) {
+        const Mesh model = turned(test::bridge_shape(), deg);
+        const Vec3 d{std::cos(deg_to_rad(deg)), std::sin(deg_to_rad(deg)), 0};
+        CeilingWall wall{d * -7.5, d * 7.5, 0, 8 - p.gap};
+        const CheckResult r = check_supports(model, wall_mesh(wall), p, {});
+        const std::string what = std::to_string(deg) + " degrees";
+        EXPECT_EQ(r.contacts, 1u) << what;
+        EXPECT_EQ(r.fused_contacts, 0u) << what;
+        EXPECT_EQ(r.open_bodies + r.inward_bodies + r.steep_bodies + r.ungrounded_bodies + r.penetrating_bodies + r.weak_bodies, 0u) << what;
+        EXPECT_GT(r.covered, 20u) << what;
+        EXPECT_FALSE(r.coverage_ok()) << what;  // beyond reach across the deck
+        // The deck's points within reach of the wall (across it) and away from its ends are covered.
+        for (const Vec3& x : r.uncovered) {
+            const double across = std::abs(d.x * x.y - d.y * x.x), along = std::abs(dot(x, d));
+            EXPECT_FALSE(across < 1.0 && along < 7.0) << what << ": (" << x.x << ", " << x.y << ") beside the wall uncovered";
+        }
+        CeilingWall fused{d * -7.5, d * 7.5, 0, 8 - 0.05};
+        EXPECT_EQ(check_supports(model, wall_mesh(fused), p, {}).fused_contacts, 1u) << what;
+    }
+}
