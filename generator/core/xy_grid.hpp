@@ -14,8 +14,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <deque>
 #include <type_traits>
-#include <unordered_map>
 #include <vector>
 
 #include "core/geometry.hpp"
@@ -32,18 +32,15 @@ public:
     long index(double v) const { return static_cast<long>(std::floor(v / cell_)); }
 
     void insert(const Vec3& p, T item) { insert_at(index(p.x), index(p.y), std::move(item)); }
-    void insert_at(long i, long j, T item) { cells_[key(i, j)].push_back(std::move(item)); }
+    void insert_at(long i, long j, T item) { cell(key(i, j)).push_back(std::move(item)); }
     // Removes the first item equal to `item` from p's cell (which must hold it).
     void erase(const Vec3& p, const T& item) {
-        auto& v = cells_[key(index(p.x), index(p.y))];
+        auto& v = cell(key(index(p.x), index(p.y)));
         v.erase(std::find(v.begin(), v.end(), item));
     }
 
     // The items of cell (i, j), or null where it is empty.
-    const std::vector<T>* at(long i, long j) const {
-        auto it = cells_.find(key(i, j));
-        return it == cells_.end() ? nullptr : &it->second;
-    }
+    const std::vector<T>* at(long i, long j) const { return find(key(i, j)); }
 
     // Calls visit(item) for every item in the cells k rings around p's cell (k = 0: that cell;
     // k = 1: the eight around it; ...). When visit returns bool, true stops the visit; the
@@ -51,19 +48,27 @@ public:
     template <typename Visit>
     bool visit_ring(const Vec3& p, long k, Visit visit) const {
         const long ci = index(p.x), cj = index(p.y);
-        for (long i = ci - k; i <= ci + k; ++i)
-            for (long j = cj - k; j <= cj + k; ++j) {
-                if (std::max(std::abs(i - ci), std::abs(j - cj)) != k) continue;
-                auto it = cells_.find(key(i, j));
-                if (it == cells_.end()) continue;
-                for (const T& item : it->second) {
-                    if constexpr (std::is_same_v<decltype(visit(item)), bool>) {
-                        if (visit(item)) return true;
-                    } else {
-                        visit(item);
-                    }
+        auto visit_cell = [&](long i, long j) {
+            const std::vector<T>* items = find(key(i, j));
+            if (!items) return false;
+            for (const T& item : *items) {
+                if constexpr (std::is_same_v<decltype(visit(item)), bool>) {
+                    if (visit(item)) return true;
+                } else {
+                    visit(item);
                 }
             }
+            return false;
+        };
+        // The ring's cells by i, then j, ascending: whole columns at its two ends, two cells between.
+        for (long i = ci - k; i <= ci + k; ++i) {
+            if (i == ci - k || i == ci + k) {
+                for (long j = cj - k; j <= cj + k; ++j)
+                    if (visit_cell(i, j)) return true;
+            } else if (visit_cell(i, cj - k) || visit_cell(i, cj + k)) {
+                return true;
+            }
+        }
         return false;
     }
 
@@ -78,8 +83,47 @@ public:
 private:
     static std::uint64_t key(long i, long j) { return (std::uint64_t(i) << 32) ^ std::uint64_t(j & 0xffffffff); }
 
+    // The cells' item lists, found by key through an open-addressed index (linear probing, at
+    // most half full): a search asks for many empty cells, each one probe.
+    struct Slot {
+        std::uint64_t key = 0;
+        std::uint32_t list = 0;  // the list's place + 1; 0: an empty slot
+    };
+    static std::size_t slot_of(std::uint64_t k, std::size_t mask) {
+        k ^= k >> 33, k *= 0xff51afd7ed558ccdull, k ^= k >> 33;  // murmur3's finaliser
+        return static_cast<std::size_t>(k) & mask;
+    }
+    const std::vector<T>* find(std::uint64_t k) const {
+        if (slots_.empty()) return nullptr;
+        const std::size_t mask = slots_.size() - 1;
+        for (std::size_t s = slot_of(k, mask); slots_[s].list != 0; s = (s + 1) & mask)
+            if (slots_[s].key == k) return &lists_[slots_[s].list - 1];
+        return nullptr;
+    }
+    std::vector<T>& cell(std::uint64_t k) {
+        if (2 * (lists_.size() + 1) > slots_.size()) {
+            std::vector<Slot> old = std::move(slots_);
+            slots_.assign(old.empty() ? 16 : 2 * old.size(), Slot{});
+            const std::size_t mask = slots_.size() - 1;
+            for (const Slot& o : old) {
+                if (o.list == 0) continue;
+                std::size_t s = slot_of(o.key, mask);
+                while (slots_[s].list != 0) s = (s + 1) & mask;
+                slots_[s] = o;
+            }
+        }
+        const std::size_t mask = slots_.size() - 1;
+        std::size_t s = slot_of(k, mask);
+        for (; slots_[s].list != 0; s = (s + 1) & mask)
+            if (slots_[s].key == k) return lists_[slots_[s].list - 1];
+        lists_.emplace_back();
+        slots_[s] = {k, static_cast<std::uint32_t>(lists_.size())};
+        return lists_.back();
+    }
+
     double cell_;
-    std::unordered_map<std::uint64_t, std::vector<T>> cells_;
+    std::deque<std::vector<T>> lists_;  // a deque: a list stays where it is as cells are added
+    std::vector<Slot> slots_;
 };
 
 }  // namespace cs

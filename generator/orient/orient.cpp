@@ -12,8 +12,26 @@
 namespace cs {
 namespace {
 
-// Overhang area of the mesh after rotation, without building the rotated mesh.
-double rotated_overhang_area(const Mesh& m, const Rotation& r, double critical_angle, double bed_height) {
+// Each face's normal (unnormalized) and its length, as rotated_overhang_area measures them: the
+// same in every pose, so worked out once for all the candidates.
+struct FaceNormal {
+    Vec3 n;
+    double len;
+};
+
+std::vector<FaceNormal> face_normals(const Mesh& m) {
+    std::vector<FaceNormal> out(m.faces.size());
+    for (size_t i = 0; i < m.faces.size(); ++i) {
+        const Vec3 n = face_normal_unnormalized(m, m.faces[i]);
+        out[i] = {n, norm(n)};
+    }
+    return out;
+}
+
+// Overhang area of the mesh after rotation, without building the rotated mesh. `normals`:
+// face_normals(m).
+double rotated_overhang_area(const Mesh& m, const std::vector<FaceNormal>& normals, const Rotation& r,
+                             double critical_angle, double bed_height) {
     std::vector<double> z(m.vertices.size());
     double zmin = INFINITY;
     for (size_t i = 0; i < m.vertices.size(); ++i) {
@@ -22,10 +40,10 @@ double rotated_overhang_area(const Mesh& m, const Rotation& r, double critical_a
     }
     const double nz_limit = overhang_normal_z_limit(critical_angle);
     double area = 0;
-    for (const auto& f : m.faces) {
+    for (size_t i = 0; i < m.faces.size(); ++i) {
+        const auto& f = m.faces[i];
         if (std::max({z[f[0]], z[f[1]], z[f[2]]}) - zmin <= 0.5 * bed_height) continue;
-        Vec3 n = face_normal_unnormalized(m, f);
-        double len = norm(n);
+        const auto& [n, len] = normals[i];
         if (len == 0) continue;
         double nz = r.m[2][0] * n.x + r.m[2][1] * n.y + r.m[2][2] * n.z;
         if (nz / len < nz_limit) area += 0.5 * len;
@@ -124,13 +142,16 @@ Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::str
     const auto unique = candidate_directions(mesh);
 
     o.candidates.resize(unique.size());
-    tbb::parallel_for(size_t(0), unique.size(), [&](size_t i) {
-        auto& c = o.candidates[i];
-        c.down = unique[i].first;
-        c.source = unique[i].second;
-        c.rotation = rotation_to_down(c.down);
-        c.overhang_area = rotated_overhang_area(mesh, c.rotation, p.critical_angle, p.layer_height);
-    });
+    {  // let go before the poses are judged (a 5M-triangle scan's take 170 MB)
+        const std::vector<FaceNormal> normals = face_normals(mesh);
+        tbb::parallel_for(size_t(0), unique.size(), [&](size_t i) {
+            auto& c = o.candidates[i];
+            c.down = unique[i].first;
+            c.source = unique[i].second;
+            c.rotation = rotation_to_down(c.down);
+            c.overhang_area = rotated_overhang_area(mesh, normals, c.rotation, p.critical_angle, p.layer_height);
+        });
+    }
     std::stable_sort(o.candidates.begin(), o.candidates.end(),
                      [](const auto& a, const auto& b) { return a.overhang_area < b.overhang_area - 1e-9; });
 

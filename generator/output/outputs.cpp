@@ -182,23 +182,34 @@ std::string report_json(const Result& r, const Job& job) {
 std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& model, const Mesh& supports,
                                            const Supports& built, const Params& p) {
     std::vector<OutputFile> files;
+    // The model's 3MF lines, written for the first 3MF and let go after the second.
+    struct ModelLines {
+        std::shared_ptr<const MeshXml> xml;
+        int uses_left = 2;
+    };
+    auto model_lines = [&model, shared = std::make_shared<ModelLines>()] {
+        if (!shared->xml) shared->xml = mesh_xml(model);
+        std::shared_ptr<const MeshXml> xml = shared->xml;
+        if (--shared->uses_left == 0) shared->xml.reset();
+        return xml;
+    };
     files.push_back({name + ".supported.stl", [&model, &supports] {
                          Mesh supported = model;
                          append(supported, supports);
                          return encode_stl(supported, "clever-support: model + supports");
                      }});
     files.push_back({name + ".supports.stl", [&supports] { return encode_stl(supports, "clever-support: supports"); }});
-    files.push_back({name + ".3mf", [name, &model, &supports] {
-                         return encode_3mf_cura(name, {{name + " model", model, {}},
+    files.push_back({name + ".3mf", [name, &model, &supports, model_lines] {
+                         return encode_3mf_cura(name, {{name + " model", model, {}, model_lines()},
                                                        {name + " supports", supports, cura_support_mesh_settings()}});
                      }});
-    files.push_back({name + ".prusa.3mf", [name, &model, &built, &p] {
+    files.push_back({name + ".prusa.3mf", [name, &model, &built, &p, model_lines] {
                          // The ceiling walls (0.5 mm fins) print as thin walls, like the N-profile's.
                          Mesh struts = bodies_mesh(built.bodies, p.wall_thickness, Profile::N);
                          for (const CeilingWall& w : built.walls) append(struts, wall_mesh(w));
                          const Mesh solid = bodies_mesh(built.bodies, p.wall_thickness, Profile::Square);
                          return encode_3mf_prusa(
-                             name, {{name + " model", model, {}},
+                             name, {{name + " model", model, {}, model_lines()},
                                     {name + " supports", struts, prusa_support_volume_settings(p, PrusaSupportVolume::NProfile)},
                                     {name + " supports, solid", solid,
                                      prusa_support_volume_settings(p, PrusaSupportVolume::Solid)}});

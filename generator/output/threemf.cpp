@@ -90,6 +90,34 @@ void append_triangles(std::string& s, const IndexedMesh& im, std::uint32_t offse
     s.append(buf.data(), buf.size());
 }
 
+}  // namespace
+
+struct MeshXml {
+    std::uint32_t vertex_count = 0;
+    std::size_t triangle_count = 0;
+    std::string vertices, triangles;
+};
+
+namespace {
+
+// A part's lines, its triangles numbered from `offset`.
+MeshXml mesh_lines(const Mesh& m, std::uint32_t offset) {
+    const IndexedMesh im = index_mesh(m);
+    MeshXml x;
+    x.vertex_count = static_cast<std::uint32_t>(im.vertices.size());
+    x.triangle_count = im.triangles.size();
+    append_vertices(x.vertices, m, im);
+    append_triangles(x.triangles, im, offset);
+    return x;
+}
+
+// The part's own lines when it brings them (numbered from 0: only where it comes first), else
+// written here.
+std::shared_ptr<const MeshXml> lines_of(const NamedMesh& part, std::uint32_t offset) {
+    if (part.xml && offset == 0) return part.xml;
+    return std::make_shared<const MeshXml>(mesh_lines(part.mesh, offset));
+}
+
 constexpr const char* kCoreNamespace = "http://schemas.microsoft.com/3dmanufacturing/core/2015/02";
 
 std::string model_header(const std::string& extra_namespaces, const std::string& metadata) {
@@ -291,6 +319,8 @@ std::string encode_cura_profile(const CuraPrinterFamily& family, const Params& p
     return encode_zip({{name, std::move(cfg)}});
 }
 
+std::shared_ptr<const MeshXml> mesh_xml(const Mesh& mesh) { return std::make_shared<const MeshXml>(mesh_lines(mesh, 0)); }
+
 std::string encode_3mf_cura(const std::string& name, const std::vector<NamedMesh>& parts) {
     std::string model = model_header("", "");
     std::string components;
@@ -304,11 +334,11 @@ std::string encode_3mf_cura(const std::string& name, const std::vector<NamedMesh
                                      xml_escape(value));
             model += "</metadatagroup>";
         }
-        IndexedMesh im = index_mesh(p->mesh);
+        const std::shared_ptr<const MeshXml> lines = lines_of(*p, 0);
         model += "<mesh><vertices>\n";
-        append_vertices(model, p->mesh, im);
+        model += lines->vertices;
         model += "</vertices><triangles>\n";
-        append_triangles(model, im, 0);
+        model += lines->triangles;
         model += "</triangles></mesh></object>\n";
         components += fmt::format("<component objectid=\"{}\"/>", id++);
     }
@@ -323,26 +353,24 @@ std::string encode_3mf_prusa(const std::string& name, const std::vector<NamedMes
                                      "<metadata name=\"slic3rpe:Version3mf\">1</metadata>\n");
     model += fmt::format("<object id=\"1\" name=\"{}\" type=\"model\"><mesh><vertices>\n", xml_escape(name));
     std::vector<const NamedMesh*> used = non_empty(parts);
-    std::vector<IndexedMesh> indexed;
-    for (const NamedMesh* p : used) {
-        indexed.push_back(index_mesh(p->mesh));
-        append_vertices(model, p->mesh, indexed.back());
+    std::vector<std::shared_ptr<const MeshXml>> lines;
+    for (std::uint32_t offset = 0; const NamedMesh* p : used) {
+        lines.push_back(lines_of(*p, offset));
+        model += lines.back()->vertices;
+        offset += lines.back()->vertex_count;
     }
     model += "</vertices><triangles>\n";
     std::string config = fmt::format(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<config>\n<object id=\"1\" instances_count=\"1\">\n"
         "<metadata type=\"object\" key=\"name\" value=\"{}\"/>\n",
         xml_escape(name));
-    std::uint32_t vertex_offset = 0;
     size_t first_triangle = 0;
     for (size_t i = 0; i < used.size(); ++i) {
-        const IndexedMesh& im = indexed[i];
-        append_triangles(model, im, vertex_offset);
-        vertex_offset += static_cast<std::uint32_t>(im.vertices.size());
-        if (im.triangles.empty()) continue;
+        model += lines[i]->triangles;
+        if (lines[i]->triangle_count == 0) continue;
         config += fmt::format("<volume firstid=\"{}\" lastid=\"{}\">\n", first_triangle,
-                              first_triangle + im.triangles.size() - 1);
-        first_triangle += im.triangles.size();
+                              first_triangle + lines[i]->triangle_count - 1);
+        first_triangle += lines[i]->triangle_count;
         config += fmt::format("<metadata type=\"volume\" key=\"name\" value=\"{}\"/>\n", xml_escape(used[i]->name));
         config += "<metadata type=\"volume\" key=\"volume_type\" value=\"ModelPart\"/>\n";
         for (const auto& [key, value] : used[i]->settings)

@@ -13,6 +13,7 @@
 //                     (one perimeter, no infill)
 #pragma once
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,10 +25,17 @@ namespace cs {
 
 using Settings = std::vector<std::pair<std::string, std::string>>;  // key, value (in file order)
 
+// A mesh as the lines of a 3MF model part: its <vertex> lines, and its <triangle> lines numbered
+// from its first vertex. The model is the same part of the .3mf and the .prusa.3mf: its lines are
+// written once for both (mesh_xml) and handed to each in NamedMesh::xml.
+struct MeshXml;
+std::shared_ptr<const MeshXml> mesh_xml(const Mesh& mesh);
+
 struct NamedMesh {
     std::string name;
     const Mesh& mesh;   // triangle soup or indexed: identical vertices are shared in the output
     Settings settings;  // slicer settings for this part (keys without any prefix)
+    std::shared_ptr<const MeshXml> xml = {};  // mesh_xml(mesh) when written already; else written here
 };
 
 // Cura's "Per Model Settings -> Print as support", and no smallest support area. Read by Cura's 3MF

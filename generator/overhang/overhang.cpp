@@ -181,8 +181,12 @@ std::vector<EdgeSegment> support_edges(const Mesh& m, const std::vector<char>& c
         bool open_border = fs.size() == 1 && over == 1;
         bool ridge = false;
         if (fs.size() == 2 && over == 0) {
-            Vec3 n1 = normalized(face_normal_unnormalized(m, m.faces[fs[0]]));
-            Vec3 n2 = normalized(face_normal_unnormalized(m, m.faces[fs[1]]));
+            const Vec3 u1 = face_normal_unnormalized(m, m.faces[fs[0]]), u2 = face_normal_unnormalized(m, m.faces[fs[1]]);
+            // Both faces facing up (or flat): their normals' sum does not point down (past a
+            // critical angle above 0), and a keel's faces face down. Neither a ridge nor a keel;
+            // most edges of a mesh end here.
+            if (u1.z >= 0 && u2.z >= 0 && sin_c >= 0) continue;
+            const Vec3 n1 = normalized(u1), n2 = normalized(u2);
             ridge = (normalized(n1 + n2).z < -sin_c && convex()) || hanging_keel(m, fs[0], fs[1], a, b, n1, n2, sin_c);
         }
         if (!(border || open_border || ridge)) continue;

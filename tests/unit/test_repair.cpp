@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include "check/check.hpp"
 #include "core/errors.hpp"
@@ -139,6 +140,66 @@ TEST(Weld, OnlyEqualCoordinatesWeldAndMinusZeroIsZero) {
     EXPECT_EQ(w.mesh.vertices.size(), 3u);  // -0 is 0; 1e-12 is not
     EXPECT_EQ(w.remap[0], w.remap[1]);
     EXPECT_NE(w.remap[0], w.remap[2]);
+}
+
+// The weld before it grouped by hash (speed5): coordinates sorted with their index, each vertex to
+// the first of its run. The grouping by hash must give the same vertices, order and faces.
+Welded weld_by_sorting(const Mesh& m) {
+    const auto& mv = m.vertices;
+    const auto n = static_cast<std::uint32_t>(mv.size());
+    std::vector<std::uint32_t> by_coords(n);
+    for (std::uint32_t i = 0; i < n; ++i) by_coords[i] = i;
+    auto key = [&](std::uint32_t i) { return std::make_tuple(mv[i].x, mv[i].y, mv[i].z); };
+    std::sort(by_coords.begin(), by_coords.end(), [&](std::uint32_t a, std::uint32_t b) {
+        return key(a) != key(b) ? key(a) < key(b) : a < b;
+    });
+    std::vector<std::uint32_t> first(n);
+    for (std::uint32_t i = 0; i < n; ++i)
+        first[by_coords[i]] = i > 0 && key(by_coords[i]) == key(by_coords[i - 1]) ? first[by_coords[i - 1]] : by_coords[i];
+    Welded w;
+    w.remap.resize(n);
+    for (std::uint32_t i = 0; i < n; ++i) {
+        if (first[i] == i) w.remap[i] = static_cast<std::uint32_t>(w.mesh.vertices.size()), w.mesh.vertices.push_back(mv[i]);
+        else w.remap[i] = w.remap[first[i]];
+    }
+    for (const auto& f : m.faces) w.mesh.faces.push_back({w.remap[f[0]], w.remap[f[1]], w.remap[f[2]]});
+    return w;
+}
+
+TEST(Weld, GroupingByHashWeldsAsSortingTheCoordinates) {
+    // Soups small (std::sort inside) and large (the radix passes), coordinates drawn from a few
+    // values with signed zeros, so most vertices repeat some earlier one.
+    std::uint64_t state = 12345;
+    auto next = [&state] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return static_cast<std::uint32_t>(state >> 33);
+    };
+    const double values[] = {0.0, -0.0, 1.0, -1.0, 0.1, 0.1 + 1e-16, 2.5, 1e-300, -1e-300, 123456.789};
+    for (std::uint32_t vertices : {3u, 30u, 1000u, 5000u, 60000u}) {
+        Mesh m;
+        for (std::uint32_t i = 0; i < vertices; ++i)
+            m.vertices.push_back({values[next() % 10], values[next() % 10], values[next() % 4]});
+        for (std::uint32_t i = 0; i + 2 < vertices; i += 3) m.faces.push_back({i, i + 1, i + 2});
+        const Welded fast = weld_vertices(m), slow = weld_by_sorting(m);
+        EXPECT_EQ(fast.remap, slow.remap) << vertices;
+        EXPECT_EQ(fast.mesh.faces, slow.mesh.faces) << vertices;
+        ASSERT_EQ(fast.mesh.vertices.size(), slow.mesh.vertices.size()) << vertices;
+        for (std::size_t i = 0; i < fast.mesh.vertices.size(); ++i) {
+            const Vec3 &a = fast.mesh.vertices[i], &b = slow.mesh.vertices[i];
+            EXPECT_TRUE(std::signbit(a.x) == std::signbit(b.x) && a.x == b.x && a.y == b.y && a.z == b.z &&
+                        std::signbit(a.z) == std::signbit(b.z))
+                << vertices << " " << i;
+        }
+    }
+    // A scan's soup: every vertex in six faces, repeated far apart.
+    Mesh soup = to_soup(box({0, 0, 0}, {1, 2, 3}));
+    for (int copy = 0; copy < 2000; ++copy) {
+        Mesh b = to_soup(box({double(copy % 40), double(copy / 40), 0}, {double(copy % 40) + 1, double(copy / 40) + 1, 1}));
+        append(soup, b);
+    }
+    const Welded fast = weld_vertices(soup), slow = weld_by_sorting(soup);
+    EXPECT_EQ(fast.remap, slow.remap);
+    EXPECT_EQ(fast.mesh.faces, slow.mesh.faces);
 }
 
 TEST(Repair, WeldsStlSoupBox) {
