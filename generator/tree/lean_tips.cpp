@@ -9,6 +9,7 @@
 #include "core/xy_grid.hpp"
 #include "tree/placement.hpp"
 #include "tree/sweep_books.hpp"
+#include "tree/tuning.hpp"
 
 namespace cs {
 
@@ -26,16 +27,32 @@ bool SweepBooks::tip_leans_to(int w, const Vec3& to) const {
            can_escape(to, p_.d_min);
 }
 
+double SweepBooks::lean_reach(int w, const Vec3& dir) const {
+    // The foot at p + dir s stays within the tip's slant of the point under its top: the larger
+    // root of |p + dir s - top|^2 = slant^2 (horizontally), 0 where none is ahead.
+    const Node& n = t_.nodes[w];
+    const double r = max_tip_slant(n.tip.z - n.p.z) * (1 - 1e-9);
+    const double qx = n.p.x - n.tip.x, qy = n.p.y - n.tip.y;
+    const double bq = qx * dir.x + qy * dir.y, c = qx * qx + qy * qy - r * r;
+    const double disc = bq * bq - c;
+    return disc < 0 ? 0.0 : std::max(0.0, -bq + std::sqrt(disc));
+}
+
 std::optional<std::pair<Vec3, Vec3>> SweepBooks::leaned_pair(int u, int v) const {
     if (!fresh_leaf(u) || !fresh_leaf(v)) return std::nullopt;
     const Vec3 a = t_.nodes[u].p, b = t_.nodes[v].p;
     const double keep = leaned_feet_apart();
     const double d = horizontal_distance(a, b);
     if (d <= keep) return std::nullopt;
-    auto slant = [&](int w) { return max_tip_slant(t_.nodes[w].tip.z - t_.nodes[w].p.z); };
     const Vec3 dir = Vec3{b.x - a.x, b.y - a.y, 0} / d;
-    const double shift = std::min({0.5 * (d - keep), slant(u), slant(v)});
-    const Vec3 a2 = a + dir * shift, b2 = b - dir * shift;
+    // Each foot goes towards the other as far as its tip may slant from its top (a hair short,
+    // which tip_leans_to measures back with rounding), half the way each where both can.
+    const double ra = lean_reach(u, dir), rb = lean_reach(v, dir * -1.0), room = d - keep;
+    double sa = std::min(ra, 0.5 * room);
+    const double sb = std::min(rb, room - sa);
+    sa = std::min(ra, room - sb);
+    if (sa + sb < kTreeTuning.least_lean) return std::nullopt;
+    const Vec3 a2 = a + dir * sa, b2 = b - dir * sb;
     if (!tip_leans_to(u, a2) || !tip_leans_to(v, b2)) return std::nullopt;
     return std::pair{a2, b2};
 }
@@ -90,7 +107,9 @@ std::vector<std::tuple<double, int, int>> nearest_pairs(int count, At at, double
 
 void lean_tips_in_pairs(SweepBooks& b, const std::vector<int>& leaves, bool quads) {
     auto& nodes = b.t_.nodes;
-    const double reach = 2 * b.max_tip_slant(b.p_.tip_length) + b.leaned_feet_apart();  // leaned_pair's farthest
+    // leaned_pair's farthest for leaves standing under their tips (a foot already slanting away
+    // from its partner reaches a little further; such pairs are left to the sweep)
+    const double reach = 2 * b.max_tip_slant(b.p_.tip_length) + b.leaned_feet_apart();
     const int n = static_cast<int>(leaves.size());
     std::vector<char> taken(n, 0);
     std::vector<std::pair<int, int>> leaned;  // the pairs, as leaves

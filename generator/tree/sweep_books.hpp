@@ -70,9 +70,14 @@ public:
     double max_tip_slant(double height) const;
     // Leaned tips keep their feet half a strut apart, so the merge below them is a real strut.
     double leaned_feet_apart() const;
-    // Two fresh leaves (nothing joined into them yet) lean their tips towards each other, as far as
-    // a tip may slant (clear_tip_foot's limit) while their feet stay half a strut apart: where
-    // the feet go, or nothing when either tip would not clear the model there.
+    // How far the foot of leaf w may move along the horizontal unit `dir` with its tip's top
+    // staying put: as far as the tip may slant from under its top (a tip already slanting, beside
+    // a wall or under a slope, has less left one way and more the other).
+    double lean_reach(int w, const Vec3& dir) const;
+    // Two fresh leaves (nothing joined into them yet) lean their tips towards each other, each as
+    // far as its tip may slant from its top (clear_tip_foot's limit; lean_reach) while their feet
+    // stay half a strut apart: where the feet go, or nothing when neither can lean
+    // (kTreeTuning.least_lean) or either tip would not clear the model there.
     std::optional<std::pair<Vec3, Vec3>> leaned_pair(int u, int v) const;
     // Four fresh leaves (two leaned pairs) lean their tips towards the middle of their four tips,
     // as far as a tip may slant, every two feet still half a strut apart: where the feet go, or

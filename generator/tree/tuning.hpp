@@ -60,6 +60,11 @@ struct TreeTuning {
     // A bend that led to a dead end is not tried again: its node's retry skips every ray passing
     // within this much (mm) of it (a strut width: a bend that near would end in the same pocket).
     double failed_bend_radius = 1.0;
+    // ---- leaning tips (tree/lean_tips.cpp)
+    // Two leaves whose feet could move towards each other by less than this (mm, together) stay
+    // as they hang: a lean that small moves nothing a slicer sees, and the tips stay straight.
+    double least_lean = 1e-3;
+
     // Neighbouring feet on the bed stay at least this far apart (mm), so no two share a corner
     // (the supports mesh would not be a set of closed solids where they did).
     double feet_apart = 0.05;

@@ -608,17 +608,21 @@ TEST(GrowTree, APartnerBeyondTheNearestBlockedOnesStillJoins) {
     EXPECT_LT(g->tree.nodes[a].p.y, 1) << "the trunk stays in front of the wall";
 }
 
+// The ways of growing that lean two leaves' tips towards each other (GrowOptions), by name.
+std::vector<std::pair<GrowOptions, const char*>> leaning_ways() {
+    return {{GrowOptions{}, "raised after the sweep"},
+            {GrowOptions{.lean_merging_leaves = true}, "leaning during the sweep"},
+            {GrowOptions{.pair_leaves_first = true}, "paired before the sweep"}};
+}
+
 TEST(GrowTree, TwoLeavesLeanTheirTipsAndMeetJustBelowThem) {
     // 2.5 mm apart (the sampling lattice) under a flat ceiling: standing straight, the leaves' cones
     // meet 2.5 / (2 tan 50) = 1.05 mm below them, five layers each leaf is an island of its own. Each
     // tip leans as far as a tip may (0.9 of the critical angle over its height) until the feet are
     // half a strut apart: the merge is then 0.5 / (2 tan 50) = 0.21 mm below, about one layer.
     // Every way of growing does it (GrowOptions: after the sweep, during it, or before it).
-    for (const GrowOptions way : {GrowOptions{}, GrowOptions{.lean_merging_leaves = true},
-                                  GrowOptions{.pair_leaves_first = true}}) {
-        SCOPED_TRACE(way.lean_merging_leaves ? "leaning during the sweep"
-                     : way.pair_leaves_first ? "paired before the sweep"
-                                             : "raised after the sweep");
+    for (const auto& [way, name] : leaning_ways()) {
+        SCOPED_TRACE(name);
         Params p;
         auto g = std::make_unique<Grown>();
         g->model = cs::test::box({100, 100, 0}, {101, 101, 1});
@@ -638,6 +642,39 @@ TEST(GrowTree, TwoLeavesLeanTheirTipsAndMeetJustBelowThem) {
                 EXPECT_NEAR(leaf.p.z - n.p.z, 0.5 * p.d_min / (2 * tan_c), 1e-6);
             }
         }
+    }
+}
+
+TEST(GrowTree, TwoLeavesBesideAWallLeanAsFarAsTheirSlantedTipsAllow) {
+    // The two leaves of the test above, 0.6 mm in front of a wall that goes down to the bed: each
+    // foot moves 0.46 mm away from the wall (leaf_position), so each tip already slants across the
+    // pair. A tip may slant 0.9 of the critical angle over its height from under its top, all told
+    // (1.07 mm): each foot still has 0.97 mm of that towards the other, and the pair meets 0.23 mm
+    // below the feet instead of 2.5 / (2 tan 50) = 1.05 mm. (Before, each foot was to move the 1 mm
+    // it moves in the open; with the slant it had, that was too far for its tip, and neither
+    // leaned: five layers of two islands.) Every way of growing does it.
+    for (const auto& [way, name] : leaning_ways()) {
+        SCOPED_TRACE(name);
+        Params p;
+        auto g = grow_from(cs::test::box({-10, 0.6, 0}, {12, 3, 14}), {{0, 0, 12}, {2.5, 0, 12}}, p);
+        g->tree = grow_tree(*g->query, g->samples.samples, p, way);
+        expect_valid_tree(*g, p);
+        ASSERT_EQ(g->tree.stats.merges, 1u);
+        const double tan_c = std::tan(p.critical_angle * kDeg);
+        std::vector<const Node*> leaves;
+        const Node* merge = nullptr;
+        for (const Node& n : g->tree.nodes) {
+            if (n.kind == NodeKind::Leaf) leaves.push_back(&n);
+            if (n.kind == NodeKind::Merge) merge = &n;
+        }
+        ASSERT_EQ(leaves.size(), 2u);
+        ASSERT_NE(merge, nullptr);
+        for (const Node* n : leaves) {
+            EXPECT_GT(std::abs(n->p.y - n->tip.y), 0.1) << "the foot stands away from the wall";
+            EXPECT_LE(horizontal_distance(n->p, n->tip), 0.9 * tan_c * (n->tip.z - n->p.z) + 1e-9) << "within its slant";
+        }
+        EXPECT_LT(horizontal_distance(leaves[0]->p, leaves[1]->p), 1.0) << "the feet lean together";
+        EXPECT_LT(leaves[0]->p.z - merge->p.z, 0.4) << "and meet within two layers below them";
     }
 }
 
