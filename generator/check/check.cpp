@@ -89,7 +89,8 @@ Mesh as_written(const Mesh& m) {
 struct Shell {
     Mesh mesh;
     Vec3 bottom, top;  // centroids of the lowest and highest vertex rings
-    double bottom_width = 0, top_width = 0;
+    double bottom_width = 0, top_width = 0;    // the rings' extent along x
+    double bottom_narrow = 0, top_narrow = 0;  // the rings' narrowest extent, across any direction
     double zmin = 0, zmax = 0;
     bool top_contact = false;      // the model is right above its top
     double top_gap = INFINITY;     // smallest vertical distance from its top to the model
@@ -102,17 +103,46 @@ struct Shell {
     std::vector<Vec3> contacts;  // the model points above a long top's contact points
 };
 
-void ring(const Mesh& m, bool highest, Vec3& centre, double& width, double& z) {
+// The narrowest horizontal extent of some points: their width across the direction that makes it
+// least, which is across a side of their convex hull. A wall's ring, at any angle, is as narrow as
+// the wall is thick (or as short, if shorter).
+double narrowest(std::vector<Vec3> pts) {
+    std::sort(pts.begin(), pts.end(), [](const Vec3& a, const Vec3& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+    auto turn = [](const Vec3& o, const Vec3& a, const Vec3& b) { return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x); };
+    std::vector<Vec3> hull;  // Andrew's monotone chain
+    for (int pass = 0; pass < 2; ++pass) {
+        const std::size_t base = hull.size();
+        for (const Vec3& q : pts) {
+            while (hull.size() >= base + 2 && turn(hull[hull.size() - 2], hull.back(), q) <= 0) hull.pop_back();
+            hull.push_back(q);
+        }
+        hull.pop_back();
+        std::reverse(pts.begin(), pts.end());
+    }
+    double best = INFINITY;
+    for (std::size_t i = 0; i < hull.size(); ++i) {
+        const Vec3 &a = hull[i], &b = hull[(i + 1) % hull.size()];
+        const double l = std::hypot(b.x - a.x, b.y - a.y);
+        if (!(l > 0)) continue;
+        double far = 0;
+        for (const Vec3& q : hull) far = std::max(far, std::abs(turn(a, b, q)) / l);
+        best = std::min(best, far);
+    }
+    return std::isfinite(best) ? best : 0.0;
+}
+
+void ring(const Mesh& m, bool highest, Vec3& centre, double& width, double& narrow, double& z) {
     z = highest ? -INFINITY : INFINITY;
     for (const auto& v : m.vertices) z = highest ? std::max(z, v.z) : std::min(z, v.z);
     const double tol = 1e-5;
     Vec3 sum;
-    int n = 0;
+    std::vector<Vec3> at;
     double x0 = INFINITY, x1 = -INFINITY;
     for (const auto& v : m.vertices)
-        if (std::abs(v.z - z) <= tol) sum += v, ++n, x0 = std::min(x0, v.x), x1 = std::max(x1, v.x);
-    centre = sum / std::max(n, 1);
+        if (std::abs(v.z - z) <= tol) sum += v, at.push_back(v), x0 = std::min(x0, v.x), x1 = std::max(x1, v.x);
+    centre = sum / std::max<double>(static_cast<double>(at.size()), 1);
     width = x1 - x0;
+    narrow = narrowest(std::move(at));
 }
 
 std::vector<Shell> shells_of(const Mesh& supports) {
@@ -120,8 +150,8 @@ std::vector<Shell> shells_of(const Mesh& supports) {
     for (auto& m : split_shells(supports)) {
         Shell s;
         s.mesh = std::move(m);
-        ring(s.mesh, false, s.bottom, s.bottom_width, s.zmin);
-        ring(s.mesh, true, s.top, s.top_width, s.zmax);
+        ring(s.mesh, false, s.bottom, s.bottom_width, s.bottom_narrow, s.zmin);
+        ring(s.mesh, true, s.top, s.top_width, s.top_narrow, s.zmax);
         shells.push_back(std::move(s));
     }
     return shells;
@@ -254,7 +284,8 @@ void check_shape(const Shell& s, const Params& p, const CheckOptions& o, CheckRe
         ++r.steep_bodies;
         flag(r, solid_name(s) + " leans " + std::to_string(angle) + " deg from vertical", s.bottom);
     }
-    const double w = std::min(s.top_width, s.bottom_width), length = distance(s.top, s.bottom);
+    // Width: the narrower end's narrowest extent (a wall is judged by its thickness, at any angle).
+    const double w = std::min(s.top_narrow, s.bottom_narrow), length = distance(s.top, s.bottom);
     if (w <= 0) return;
     r.worst_length_to_width = std::max(r.worst_length_to_width, length / w);
     // The slicer prints whole layers: the part-layer at each end of a solid prints fused into the

@@ -40,7 +40,9 @@
 //  closed       every solid is closed and outward-facing.
 //  angles       every solid's axis is within the critical angle of vertical.
 //  strength     no solid is longer for its width than the strength rule allows: its length less
-//               a layer (its end caps print fused into what they meet), over its width, at most
+//               a layer (its end caps print fused into what they meet), over its width (the
+//               narrowest horizontal extent of its narrower end, across any direction: a wall's
+//               thickness, whichever way it runs), at most
 //               strength_length * width * slant(angle) (check.cpp says where that comes from);
 //               the worst length-to-width ratio is reported.
 //

@@ -512,7 +512,7 @@ TEST(CheckWalls, ATurnedWallsLongTopIsAContactAlongItsWholeLength) {
     for (double deg : {0.0, 30.0, 120.0}) {
         const Mesh model = turned(test::bridge_shape(), deg);
         const Vec3 d{std::cos(deg_to_rad(deg)), std::sin(deg_to_rad(deg)), 0};
-        CeilingWall wall{d * -7.5, d * 7.5, 0, 8 - p.gap};
+        CeilingWall wall{d * -7.5, d * 7.5, 0, 8 - p.gap, false, wall_thickness_for(p, 8 - p.gap)};
         const CheckResult r = check_supports(model, wall_mesh(wall), p, {});
         const std::string what = std::to_string(deg) + " degrees";
         EXPECT_EQ(r.contacts, 1u) << what;
@@ -525,7 +525,28 @@ TEST(CheckWalls, ATurnedWallsLongTopIsAContactAlongItsWholeLength) {
             const double across = std::abs(d.x * x.y - d.y * x.x), along = std::abs(dot(x, d));
             EXPECT_FALSE(across < 1.0 && along < 7.0) << what << ": (" << x.x << ", " << x.y << ") beside the wall uncovered";
         }
-        CeilingWall fused{d * -7.5, d * 7.5, 0, 8 - 0.05};
+        CeilingWall fused = wall;
+        fused.top = 8 - 0.05;
         EXPECT_EQ(check_supports(model, wall_mesh(fused), p, {}).fused_contacts, 1u) << what;
+    }
+}
+
+// check/: a wall's strength is judged by its thickness, whichever way it runs (a plate sways across
+// its thinnest side): 20 mm tall and 0.5 mm thick it is too slender at 0, 30 and 90 degrees (until
+// 2026-11-26 check took the top's extent along x as its width: a wall along x or turned 30 degrees
+// passed by its length); as thick as wall_thickness_for asks it passes at every angle.
+TEST(CheckWalls, AWallIsJudgedForStrengthByItsThicknessAtAnyAngle) {
+    Params p;
+    const Mesh model = test::box({40, 40, 0}, {45, 45, 5});  // far off: nothing to support, nothing above
+    for (double deg : {0.0, 30.0, 90.0}) {
+        const Vec3 d{std::cos(deg_to_rad(deg)), std::sin(deg_to_rad(deg)), 0};
+        const std::string what = std::to_string(deg) + " degrees";
+        CeilingWall thin{d * -5.0, d * 5.0, 0, 20, false, 0.5};
+        const CheckResult r = check_supports(model, wall_mesh(thin), p, {});
+        EXPECT_EQ(r.weak_bodies, 1u) << what << ": " << r.summary();
+        EXPECT_NEAR(r.worst_length_to_width, 20 / 0.5, 1e-6) << what;
+        CeilingWall sized = thin;
+        sized.thickness = wall_thickness_for(p, 20);
+        EXPECT_EQ(check_supports(model, wall_mesh(sized), p, {}).weak_bodies, 0u) << what;
     }
 }
