@@ -1220,6 +1220,14 @@ double wall_thickness_for(const Params& p, double height) {
     return std::max(p.wall_thickness, strength_width(p, height, 0));
 }
 
+Box3 wall_box(const CeilingWall& w, double margin) {
+    const double side = 0.5 * w.thickness + margin;
+    Box3 b;
+    b.min = {std::min(w.from.x, w.to.x) - side, std::min(w.from.y, w.to.y) - side, w.bottom};
+    b.max = {std::max(w.from.x, w.to.x) + side, std::max(w.from.y, w.to.y) + side, w.top};
+    return b;
+}
+
 Mesh wall_mesh(const CeilingWall& w) {
     const double thickness = w.thickness;
     Mesh m;

@@ -143,6 +143,12 @@ double walls_line_seconds(const SlicerRoute& r, const std::vector<CeilingWall>& 
 // its faces as triangles.
 Mesh wall_mesh(const CeilingWall& w);
 
+// The box one wall takes, `margin` wider on every side across the floor plan (its ends and faces):
+// from `bottom` to `top`, its footprint the from-to line grown by half its thickness and `margin`.
+// Axis-aligned, so it holds a turned wall too (with some air at its corners). Example: the hybrid
+// keeps out of wall_box(w, tip_side_clearance(p)) of every wall.
+Box3 wall_box(const CeilingWall& w, double margin = 0);
+
 // How thick a wall `height` tall is built: the wall thickness, or the strength rule's width for a
 // column that tall, whichever is more.
 double wall_thickness_for(const Params& p, double height);

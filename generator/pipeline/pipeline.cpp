@@ -192,13 +192,7 @@ Ceilings with_hybrid(const ModelQuery& q, const Ceilings& walls, const Params& p
                      const FeetTreeCounter& tree_count, const TipAt& tip_at) {
     if (p.hybrid_height <= 0) return walls;
     std::vector<Box3> blockers = user_blockers;
-    for (const CeilingWall& w : walls.walls) {
-        const double side = 0.5 * w.thickness + tip_side_clearance(p);
-        Box3 b;
-        b.min = {std::min(w.from.x, w.to.x) - side, std::min(w.from.y, w.to.y) - side, w.bottom};
-        b.max = {std::max(w.from.x, w.to.x) + side, std::max(w.from.y, w.to.y) + side, w.top};
-        blockers.push_back(b);
-    }
+    for (const CeilingWall& w : walls.walls) blockers.push_back(wall_box(w, tip_side_clearance(p)));
     Ceilings hybrid = support_hybrid(q, walls.rest, p, tree_count, blockers, tip_at, walls.stay);
     if (hybrid.walls.empty()) return walls;
     Ceilings out = walls;

@@ -332,6 +332,29 @@ TEST(Ceilings, WallMeshesAreClosedAndFaceOutward) {
     EXPECT_NEAR(signed_volume(wall_mesh(on_model)), 0.5 * 2 * 1.8, 1e-9);
 }
 
+// The box a wall takes holds its mesh, along an axis and turned (30 degrees), with the margin
+// on every side across the floor plan and none above or below; along an axis it is tight.
+TEST(Ceilings, AWallsBoxHoldsItsMeshAndItsMargin) {
+    const double margin = 0.4;
+    for (const CeilingWall& w : {CeilingWall{{0, 0, 0}, {3, 0, 0}, 1, 4, false, 0.5},
+                                 CeilingWall{{0, 0, 0}, {3 * std::cos(0.5236), 3 * std::sin(0.5236), 0}, 1, 4, false, 0.8}}) {
+        const Box3 b = wall_box(w, margin);
+        for (const Vec3& v : wall_mesh(w).vertices) {
+            EXPECT_GE(v.x, b.min.x + margin - 1e-9);
+            EXPECT_LE(v.x, b.max.x - margin + 1e-9);
+            EXPECT_GE(v.y, b.min.y + margin - 1e-9);
+            EXPECT_LE(v.y, b.max.y - margin + 1e-9);
+            EXPECT_GE(v.z, b.min.z - 1e-9);
+            EXPECT_LE(v.z, b.max.z + 1e-9);
+        }
+        EXPECT_DOUBLE_EQ(b.min.z, w.bottom);
+        EXPECT_DOUBLE_EQ(b.max.z, w.top);
+    }
+    const Box3 along = wall_box({{0, 0, 0}, {3, 0, 0}, 1, 4, false, 0.5}, margin);
+    EXPECT_NEAR(along.max.y - along.min.y, 0.5 + 2 * margin, 1e-12);
+    EXPECT_NEAR(along.max.x - along.min.x, 3 + 0.5 + 2 * margin, 1e-12);
+}
+
 TEST(Ceilings, CheckPassesTheBridgeWithWallsAndTheTreeForTheRest) {
     Walled w = walled(test::bridge_shape());
     ASSERT_FALSE(w.ceilings.walls.empty());
