@@ -50,14 +50,26 @@ constexpr double kContactStep = 0.25;
 constexpr std::size_t kMinRegion = 4;
 
 // The ceiling over (x, y) near height z_ref: the first face above z_ref - rise when it is an
-// overhang face (steeper than the critical angle, seen from below) within rise of z_ref.
-std::optional<double> ceiling_near(const ModelQuery& q, double x, double y, double z_ref, double rise, double overhang_nz) {
+// overhang face (steeper than the critical angle, seen from below) within rise of z_ref: its height
+// and that face's normal (unnormalized), where the ceiling's slope is asked too.
+struct CeilingHit {
+    double z;
+    Vec3 normal;
+};
+std::optional<CeilingHit> ceiling_face_near(const ModelQuery& q, double x, double y, double z_ref, double rise,
+                                            double overhang_nz) {
     auto hit = q.first_hit({x, y, z_ref - rise}, {0, 0, 1});
     if (!hit || hit->point.z > z_ref + rise) return std::nullopt;
     const Vec3 n = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
     const double l = norm(n);
     if (!(l > 0) || n.z / l > overhang_nz) return std::nullopt;
-    return hit->point.z;
+    return CeilingHit{hit->point.z, n};
+}
+
+// Its height alone.
+std::optional<double> ceiling_near(const ModelQuery& q, double x, double y, double z_ref, double rise, double overhang_nz) {
+    const auto hit = ceiling_face_near(q, x, y, z_ref, rise, overhang_nz);
+    return hit ? std::optional<double>{hit->z} : std::nullopt;
 }
 
 // Nearly level floors only: a wall's foot is one flat piece a gap above the highest point under it.
@@ -373,11 +385,9 @@ std::optional<double> level_direction(const ModelQuery& q, const Region& r, cons
     std::size_t n = 0;
     for (std::size_t i : r.samples) {
         const Vec3& a = samples[i].p;
-        auto hit = q.first_hit({a.x, a.y, a.z - rise}, {0, 0, 1});
-        if (!hit || hit->point.z > a.z + rise) continue;
-        const Vec3 f = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
-        const double l = norm(f);
-        if (!(l > 0) || f.z / l > overhang_nz) continue;
+        const auto hit = ceiling_face_near(q, a.x, a.y, a.z, rise, overhang_nz);
+        if (!hit) continue;
+        const Vec3& f = hit->normal;
         const double gx = -f.x / f.z, gy = -f.y / f.z;  // the face's rise per mm along x and y
         mxx += gx * gx, mxy += gx * gy, myy += gy * gy, ++n;
     }

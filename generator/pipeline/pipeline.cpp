@@ -325,10 +325,6 @@ std::optional<Vec3> beside_blockers(const ModelQuery& model, const Vec3& s, cons
     return hit->point;
 }
 
-// What holds each sample's overhang up, at the height of that overhang: a live leaf's tip top, a
-// pillar's top, else the sample itself (it rests on material, or is bridged). The samples in
-// `lost` hold nothing up: leaves the sweep lost (their strut found no way down; a leaf beside one
-// starts elsewhere and may get down) and samples given up before the tree grew (untipped).
 // Each (sample, what holds it up at its height) pair of the tree's live leaves and pillars: a
 // leaf's tip top, a pillar's top. The one home of that rule for coverers() and tips_of().
 std::vector<std::pair<Vec3, Vec3>> tip_tops(const SupportTree& t) {
@@ -339,6 +335,10 @@ std::vector<std::pair<Vec3, Vec3>> tip_tops(const SupportTree& t) {
     return at;
 }
 
+// What holds each sample's overhang up, at the height of that overhang: a live leaf's tip top, a
+// pillar's top, else the sample itself (it rests on material, or is bridged). The samples in
+// `lost` hold nothing up: leaves the sweep lost (their strut found no way down; a leaf beside one
+// starts elsewhere and may get down) and samples given up before the tree grew (untipped).
 std::vector<Vec3> coverers(const SupportTree& t, const std::vector<Sample>& samples, const std::vector<Vec3>& lost = {}) {
     std::vector<Vec3> out, carried = lost;
     for (const auto& [sample, top] : tip_tops(t)) out.push_back(top), carried.push_back(sample);
