@@ -385,7 +385,8 @@ struct RegionWalls {
 };
 
 // Seconds the region's walls add on a route: each run's line on every layer it spans, plus, on
-// every layer, the meanders' islands and the hops between them (about a span each).
+// every layer, the route's price of each meander's island (SlicerRoute::wall_island_s: the hop to
+// it, its retraction, start and stop), as walls_seconds prices the walls the pipeline keeps.
 double walls_route_seconds(const SlicerRoute& r, const RegionWalls& w, const Params& p) {
     double s = 0;
     for (const Run& run : w.walls) {
@@ -396,7 +397,7 @@ double walls_route_seconds(const SlicerRoute& r, const RegionWalls& w, const Par
         s += wall_line_seconds(r, horizontal_distance(run.top.front(), run.top.back()), height, thickness, p);
     }
     const double layers = w.height / p.layer_height, pieces = static_cast<double>(w.pieces);
-    return s + layers * tree_route_seconds(r, pieces, 0, (pieces - 1) * p.ceiling_span);
+    return s + layers * pieces * r.wall_island_s;
 }
 
 // Which way the rows run: where the ceiling is level. A sloping or round ceiling then gets long
