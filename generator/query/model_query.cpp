@@ -434,6 +434,9 @@ bool ModelQuery::inside_uncached(const Vec3& p) const {
 std::size_t count_self_intersections(const Mesh& mesh, std::size_t limit) {
     using SM = CGAL::Surface_mesh<Point>;
     SM sm;
+    // Room for a closed mesh's elements at once (an edge to two faces): no array is copied as it
+    // grows. Capacity only: the mesh built is the same.
+    sm.reserve(mesh.vertices.size(), 3 * mesh.faces.size() / 2 + 1, mesh.faces.size());
     std::vector<SM::Vertex_index> vs;
     vs.reserve(mesh.vertices.size());
     for (const auto& v : mesh.vertices) vs.push_back(sm.add_vertex(pt(v)));
