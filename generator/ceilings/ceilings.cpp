@@ -2,12 +2,12 @@
 #include "ceilings/hybrid.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <optional>
 #include <array>
-#include <map>
-#include <unordered_map>
 
+#include "core/flat_index.hpp"
 #include "core/rules.hpp"
 #include "core/slicer_time.hpp"
 #include "core/xy_grid.hpp"
@@ -19,10 +19,71 @@ double wall_line_seconds(const SlicerRoute& r, double length, double height, dou
     return height / p.layer_height * line_route_seconds(r, length, thickness);
 }
 
-double walls_line_seconds(const SlicerRoute& r, const std::vector<CeilingWall>& walls, const Params& p) {
-    double s = 0;
-    for (const CeilingWall& w : walls) s += wall_line_seconds(r, horizontal_distance(w.from, w.to), w.top - w.bottom, w.thickness, p);
-    return s;
+WallsPrinted walls_printed(const SlicerRoute& r, const std::vector<CeilingWall>& walls, const Params& p) {
+    WallsPrinted out;
+    if (walls.empty()) return out;
+    // Pieces in line meet end to end (a row's stations are written to the same coordinates); pieces
+    // touch where an end of one lies within their half thicknesses of the other's line (a join ends
+    // inside the rows it joins), and the slicer's outline of the two is one.
+    constexpr double kMeet = 1e-3;
+    auto touch = [](const CeilingWall& u, const CeilingWall& v) {
+        const double reach = 0.5 * (u.thickness + v.thickness) + kMeet;
+        auto near_line = [&](const Vec3& e, const CeilingWall& w) {
+            const double dx = w.to.x - w.from.x, dy = w.to.y - w.from.y, ll = dx * dx + dy * dy;
+            const double t = ll > 0 ? std::clamp(((e.x - w.from.x) * dx + (e.y - w.from.y) * dy) / ll, 0.0, 1.0) : 0.0;
+            return std::hypot(e.x - w.from.x - t * dx, e.y - w.from.y - t * dy) <= reach;
+        };
+        return near_line(u.from, v) || near_line(u.to, v) || near_line(v.from, u) || near_line(v.to, u);
+    };
+    struct Pair {
+        std::size_t a, b;
+        bool in_line;  // same direction and thickness: one line where both are printed
+    };
+    std::vector<Pair> pairs;
+    auto direction = [](const CeilingWall& w) {
+        const double d = horizontal_distance(w.from, w.to);
+        return d > 0 ? Vec3{(w.to.x - w.from.x) / d, (w.to.y - w.from.y) / d, 0} : Vec3{0, 0, 0};
+    };
+    for (std::size_t a = 0; a < walls.size(); ++a)
+        for (std::size_t b = a + 1; b < walls.size(); ++b) {
+            const CeilingWall &u = walls[a], &v = walls[b];
+            if (!touch(u, v)) continue;
+            const bool meet = horizontal_distance(u.from, v.from) < kMeet || horizontal_distance(u.from, v.to) < kMeet ||
+                              horizontal_distance(u.to, v.from) < kMeet || horizontal_distance(u.to, v.to) < kMeet;
+            const Vec3 du = direction(u), dv = direction(v);
+            pairs.push_back({a, b, meet && std::abs(du.x * dv.y - du.y * dv.x) < 1e-3 && u.thickness == v.thickness});
+        }
+    double low = walls.front().bottom, high = walls.front().top;
+    for (const CeilingWall& w : walls) low = std::min(low, w.bottom), high = std::max(high, w.top);
+    std::vector<std::size_t> island(walls.size()), line(walls.size());
+    std::vector<double> length(walls.size());
+    auto root = [](std::vector<std::size_t>& up, std::size_t i) {
+        while (up[i] != i) i = up[i] = up[up[i]];
+        return i;
+    };
+    for (long k = std::max(0L, static_cast<long>(std::floor(low / p.layer_height))); (k + 0.5) * p.layer_height < high; ++k) {
+        const double z = (k + 0.5) * p.layer_height;
+        auto printed = [&](std::size_t i) { return walls[i].bottom <= z && z < walls[i].top; };
+        for (std::size_t i = 0; i < walls.size(); ++i) island[i] = line[i] = i, length[i] = 0;
+        for (const Pair& q : pairs) {
+            if (!printed(q.a) || !printed(q.b)) continue;
+            island[root(island, q.a)] = root(island, q.b);
+            if (q.in_line) line[root(line, q.a)] = root(line, q.b);
+        }
+        for (std::size_t i = 0; i < walls.size(); ++i)
+            if (printed(i)) {
+                out.island_layers += root(island, i) == i;
+                length[root(line, i)] += horizontal_distance(walls[i].from, walls[i].to);
+            }
+        for (std::size_t i = 0; i < walls.size(); ++i)
+            if (printed(i) && root(line, i) == i) out.line_seconds += line_route_seconds(r, length[i], walls[i].thickness);
+    }
+    return out;
+}
+
+double walls_seconds(const SlicerRoute& r, const std::vector<CeilingWall>& walls, const Params& p) {
+    const WallsPrinted w = walls_printed(r, walls, p);
+    return w.line_seconds + r.wall_island_s * w.island_layers;
 }
 
 namespace {
@@ -324,7 +385,8 @@ struct RegionWalls {
 };
 
 // Seconds the region's walls add on a route: each run's line on every layer it spans, plus, on
-// every layer, the meanders' islands and the hops between them (about a span each).
+// every layer, the route's price of each meander's island (SlicerRoute::wall_island_s: the hop to
+// it, its retraction, start and stop), as walls_seconds prices the walls the pipeline keeps.
 double walls_route_seconds(const SlicerRoute& r, const RegionWalls& w, const Params& p) {
     double s = 0;
     for (const Run& run : w.walls) {
@@ -335,7 +397,7 @@ double walls_route_seconds(const SlicerRoute& r, const RegionWalls& w, const Par
         s += wall_line_seconds(r, horizontal_distance(run.top.front(), run.top.back()), height, thickness, p);
     }
     const double layers = w.height / p.layer_height, pieces = static_cast<double>(w.pieces);
-    return s + layers * tree_route_seconds(r, pieces, 0, (pieces - 1) * p.ceiling_span);
+    return s + layers * pieces * r.wall_island_s;
 }
 
 // Which way the rows run: where the ceiling is level. A sloping or round ceiling then gets long
@@ -724,16 +786,19 @@ public:
     JudgedSurface(const Mesh& m, double step, const Box3& near, double critical_angle)
         : step_(step), overhang_nz_(-std::sin(deg_to_rad(critical_angle))), line_ez_(std::cos(deg_to_rad(critical_angle))),
           faces_(kCell), points_(kCell) {
-        // As written: float vertices (the .model.stl), identical ones one vertex. Only the faces
-        // near the walls are kept (welded as they come).
-        std::unordered_map<std::array<float, 3>, std::uint32_t, FloatsHash> welded;
+        // As written: float vertices (the .model.stl), equal ones (as floats compare: -0 is +0, a
+        // NaN equals nothing) one vertex, numbered as they first come. Only the faces near the
+        // walls are kept (welded as they come).
+        FlatIndex welded;
         std::vector<std::uint32_t> vertex(m.vertices.size(), kNone);
         auto weld = [&](std::uint32_t v) {
             if (vertex[v] == kNone) {
-                const std::array<float, 3> key{float(m.vertices[v].x), float(m.vertices[v].y), float(m.vertices[v].z)};
-                const auto [it, fresh] = welded.try_emplace(key, static_cast<std::uint32_t>(at_.size()));
-                if (fresh) at_.push_back({key[0], key[1], key[2]});
-                vertex[v] = it->second;
+                const Vec3 key{float(m.vertices[v].x), float(m.vertices[v].y), float(m.vertices[v].z)};
+                const auto [at, fresh] = welded.insert(
+                    float_hash(key), at_.size(), [&](std::size_t i) { return at_[i] == key; },
+                    [&](std::size_t i) { return float_hash(at_[i]); });
+                if (fresh) at_.push_back(key);
+                vertex[v] = static_cast<std::uint32_t>(at);
             }
             return vertex[v];
         };
@@ -762,13 +827,17 @@ public:
 private:
     static constexpr double kCell = 1.0;
     static constexpr std::uint32_t kNone = ~std::uint32_t{0};
-    struct FloatsHash {
-        std::size_t operator()(const std::array<float, 3>& k) const {
-            std::size_t h = 0;
-            for (float x : k) h = h * 1000003u ^ std::hash<float>{}(x);
-            return h;
+    // A hash of a vertex at float precision, equal for equal vertices (-0 as +0).
+    static std::uint64_t float_hash(const Vec3& v) {
+        std::uint64_t h = 0x9e3779b97f4a7c15ull;
+        for (const double x : {v.x, v.y, v.z}) {  // splitmix64 over each coordinate's bits
+            std::uint64_t z = h ^ std::bit_cast<std::uint64_t>(x == 0 ? 0.0 : x);
+            z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+            z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+            h = z ^ (z >> 31);
         }
-    };
+        return h;
+    }
 
     Vec3 unit_normal(const Triangle& t) const {
         const Vec3 n = cross(at_[t[1]] - at_[t[0]], at_[t[2]] - at_[t[0]]);
@@ -796,23 +865,47 @@ private:
                 if (const Vec3 x = u + (v - u) * (double(k) / n); inside_cell(x)) out.push_back(x);
         };
         if (const auto* faces = faces_.at(i, j)) {
-            std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> by_edge;
-            std::map<std::uint32_t, double> lowest_neighbour;
-            for (std::size_t f : *faces) {
-                const Triangle& t = tris_[f];
+            // Each face's corners by edge and by vertex, tagged with their order here (face, then
+            // corner), sorted by key, then by that order: the edges and vertices come in key order and
+            // each one's faces in the order they came, as a std::map of lists gives them, without a
+            // node per entry (this was most of the stage on small models).
+            const std::size_t corners = 3 * faces->size();
+            std::vector<std::pair<std::uint64_t, std::uint32_t>> by_edge(corners), by_vertex(corners);
+            for (std::size_t n = 0; n < faces->size(); ++n) {
+                const Triangle& t = tris_[(*faces)[n]];
                 for (int k = 0; k < 3; ++k) {
-                    by_edge[std::minmax(t[k], t[(k + 1) % 3])].push_back(f);
-                    auto [it, fresh] = lowest_neighbour.try_emplace(t[k], INFINITY);
-                    it->second = std::min({it->second, at_[t[(k + 1) % 3]].z, at_[t[(k + 2) % 3]].z});
+                    const auto [a, b] = std::minmax(t[k], t[(k + 1) % 3]);
+                    const auto corner = static_cast<std::uint32_t>(3 * n + k);
+                    by_edge[3 * n + k] = {(std::uint64_t(a) << 32) | b, corner};
+                    by_vertex[3 * n + k] = {t[k], corner};
                 }
                 if (unit_normal(t).z < overhang_nz_ + kJudgedSlack) face_points(t, i, j, out, along);
             }
-            for (const auto& [e, fs] : by_edge)
-                if (fs.size() == 2 && is_ridge(e, tris_[fs[0]], tris_[fs[1]])) along(at_[e.first], at_[e.second]);
+            std::sort(by_edge.begin(), by_edge.end());
+            std::sort(by_vertex.begin(), by_vertex.end());
+            auto face_of = [&](std::uint32_t corner) { return (*faces)[corner / 3]; };
+            for (std::size_t r = 0; r < corners;) {  // each edge's run of faces: a ridge has two
+                std::size_t end = r + 1;
+                while (end < corners && by_edge[end].first == by_edge[r].first) ++end;
+                const std::pair<std::uint32_t, std::uint32_t> e{std::uint32_t(by_edge[r].first >> 32), std::uint32_t(by_edge[r].first)};
+                if (end - r == 2 && is_ridge(e, tris_[face_of(by_edge[r].second)], tris_[face_of(by_edge[r + 1].second)]))
+                    along(at_[e.first], at_[e.second]);
+                r = end;
+            }
             // Every neighbour higher, compared exactly: these are check's own float coordinates
-            // (a flat face's corners are not lowest).
-            for (const auto& [v, z] : lowest_neighbour)
+            // (a flat face's corners are not lowest). A vertex's lowest neighbour is folded in the
+            // faces' order, as std::min({lowest, ...}) did it (the same value, NaNs included).
+            for (std::size_t r = 0; r < corners;) {
+                const std::uint32_t v = static_cast<std::uint32_t>(by_vertex[r].first);
+                double z = INFINITY;
+                for (; r < corners && by_vertex[r].first == v; ++r) {
+                    const std::uint32_t corner = by_vertex[r].second;
+                    const Triangle& t = tris_[face_of(corner)];
+                    const int k = static_cast<int>(corner % 3);
+                    z = std::min({z, at_[t[(k + 1) % 3]].z, at_[t[(k + 2) % 3]].z});
+                }
                 if (z > at_[v].z && inside_cell(at_[v])) out.push_back(at_[v]);
+            }
         }
         points_.insert_at(i, j, Vec3{});  // marks the cell made (an empty list stays findable)
         auto& stored = const_cast<std::vector<Vec3>&>(*points_.at(i, j));

@@ -72,7 +72,11 @@ json supports_json(const Supports& s, const Params& p) {
                                  {"travel_mm", cost.travel_mm},
                                  {"seconds", cost.seconds},
                                  {"routes", {{"cura_support_mesh", {{"seconds", cost.cura_seconds}}},
-                                             {"prusa_3mf", {{"seconds", cost.prusa_seconds}}}}}}}};
+                                             {"prusa_3mf", {{"seconds", cost.prusa_seconds}}}}},
+                                 // the walls' part: their islands and their lines' seconds per route
+                                 {"walls", {{"island_layers", s.walls_cura.island_layers},
+                                            {"routes", {{"cura_support_mesh", {{"line_seconds", s.walls_cura.line_seconds}}},
+                                                        {"prusa_3mf", {{"line_seconds", s.walls_prusa.line_seconds}}}}}}}}}};
 }
 
 json edits_json(const ManualEdits& e, std::size_t blocked_samples) {
@@ -194,9 +198,7 @@ std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& 
         return xml;
     };
     files.push_back({name + ".supported.stl", [&model, &supports] {
-                         Mesh supported = model;
-                         append(supported, supports);
-                         return encode_stl(supported, "clever-support: model + supports");
+                         return encode_stl({&model, &supports}, "clever-support: model + supports");
                      }});
     files.push_back({name + ".supports.stl", [&supports] { return encode_stl(supports, "clever-support: supports"); }});
     files.push_back({name + ".3mf", [name, &model, &supports, model_lines] {
