@@ -2,12 +2,12 @@
 #include "ceilings/hybrid.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <optional>
 #include <array>
-#include <map>
-#include <unordered_map>
 
+#include "core/flat_index.hpp"
 #include "core/rules.hpp"
 #include "core/slicer_time.hpp"
 #include "core/xy_grid.hpp"
@@ -724,16 +724,19 @@ public:
     JudgedSurface(const Mesh& m, double step, const Box3& near, double critical_angle)
         : step_(step), overhang_nz_(-std::sin(deg_to_rad(critical_angle))), line_ez_(std::cos(deg_to_rad(critical_angle))),
           faces_(kCell), points_(kCell) {
-        // As written: float vertices (the .model.stl), identical ones one vertex. Only the faces
-        // near the walls are kept (welded as they come).
-        std::unordered_map<std::array<float, 3>, std::uint32_t, FloatsHash> welded;
+        // As written: float vertices (the .model.stl), equal ones (as floats compare: -0 is +0, a
+        // NaN equals nothing) one vertex, numbered as they first come. Only the faces near the
+        // walls are kept (welded as they come).
+        FlatIndex welded;
         std::vector<std::uint32_t> vertex(m.vertices.size(), kNone);
         auto weld = [&](std::uint32_t v) {
             if (vertex[v] == kNone) {
-                const std::array<float, 3> key{float(m.vertices[v].x), float(m.vertices[v].y), float(m.vertices[v].z)};
-                const auto [it, fresh] = welded.try_emplace(key, static_cast<std::uint32_t>(at_.size()));
-                if (fresh) at_.push_back({key[0], key[1], key[2]});
-                vertex[v] = it->second;
+                const Vec3 key{float(m.vertices[v].x), float(m.vertices[v].y), float(m.vertices[v].z)};
+                const auto [at, fresh] = welded.insert(
+                    float_hash(key), at_.size(), [&](std::size_t i) { return at_[i] == key; },
+                    [&](std::size_t i) { return float_hash(at_[i]); });
+                if (fresh) at_.push_back(key);
+                vertex[v] = static_cast<std::uint32_t>(at);
             }
             return vertex[v];
         };
@@ -762,13 +765,17 @@ public:
 private:
     static constexpr double kCell = 1.0;
     static constexpr std::uint32_t kNone = ~std::uint32_t{0};
-    struct FloatsHash {
-        std::size_t operator()(const std::array<float, 3>& k) const {
-            std::size_t h = 0;
-            for (float x : k) h = h * 1000003u ^ std::hash<float>{}(x);
-            return h;
+    // A hash of a vertex at float precision, equal for equal vertices (-0 as +0).
+    static std::uint64_t float_hash(const Vec3& v) {
+        std::uint64_t h = 0x9e3779b97f4a7c15ull;
+        for (const double x : {v.x, v.y, v.z}) {  // splitmix64 over each coordinate's bits
+            std::uint64_t z = h ^ std::bit_cast<std::uint64_t>(x == 0 ? 0.0 : x);
+            z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+            z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+            h = z ^ (z >> 31);
         }
-    };
+        return h;
+    }
 
     Vec3 unit_normal(const Triangle& t) const {
         const Vec3 n = cross(at_[t[1]] - at_[t[0]], at_[t[2]] - at_[t[0]]);
@@ -796,23 +803,47 @@ private:
                 if (const Vec3 x = u + (v - u) * (double(k) / n); inside_cell(x)) out.push_back(x);
         };
         if (const auto* faces = faces_.at(i, j)) {
-            std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> by_edge;
-            std::map<std::uint32_t, double> lowest_neighbour;
-            for (std::size_t f : *faces) {
-                const Triangle& t = tris_[f];
+            // Each face's corners by edge and by vertex, tagged with their order here (face, then
+            // corner), sorted by key, then by that order: the edges and vertices come in key order and
+            // each one's faces in the order they came, as a std::map of lists gives them, without a
+            // node per entry (this was most of the stage on small models).
+            const std::size_t corners = 3 * faces->size();
+            std::vector<std::pair<std::uint64_t, std::uint32_t>> by_edge(corners), by_vertex(corners);
+            for (std::size_t n = 0; n < faces->size(); ++n) {
+                const Triangle& t = tris_[(*faces)[n]];
                 for (int k = 0; k < 3; ++k) {
-                    by_edge[std::minmax(t[k], t[(k + 1) % 3])].push_back(f);
-                    auto [it, fresh] = lowest_neighbour.try_emplace(t[k], INFINITY);
-                    it->second = std::min({it->second, at_[t[(k + 1) % 3]].z, at_[t[(k + 2) % 3]].z});
+                    const auto [a, b] = std::minmax(t[k], t[(k + 1) % 3]);
+                    const auto corner = static_cast<std::uint32_t>(3 * n + k);
+                    by_edge[3 * n + k] = {(std::uint64_t(a) << 32) | b, corner};
+                    by_vertex[3 * n + k] = {t[k], corner};
                 }
                 if (unit_normal(t).z < overhang_nz_ + kJudgedSlack) face_points(t, i, j, out, along);
             }
-            for (const auto& [e, fs] : by_edge)
-                if (fs.size() == 2 && is_ridge(e, tris_[fs[0]], tris_[fs[1]])) along(at_[e.first], at_[e.second]);
+            std::sort(by_edge.begin(), by_edge.end());
+            std::sort(by_vertex.begin(), by_vertex.end());
+            auto face_of = [&](std::uint32_t corner) { return (*faces)[corner / 3]; };
+            for (std::size_t r = 0; r < corners;) {  // each edge's run of faces: a ridge has two
+                std::size_t end = r + 1;
+                while (end < corners && by_edge[end].first == by_edge[r].first) ++end;
+                const std::pair<std::uint32_t, std::uint32_t> e{std::uint32_t(by_edge[r].first >> 32), std::uint32_t(by_edge[r].first)};
+                if (end - r == 2 && is_ridge(e, tris_[face_of(by_edge[r].second)], tris_[face_of(by_edge[r + 1].second)]))
+                    along(at_[e.first], at_[e.second]);
+                r = end;
+            }
             // Every neighbour higher, compared exactly: these are check's own float coordinates
-            // (a flat face's corners are not lowest).
-            for (const auto& [v, z] : lowest_neighbour)
+            // (a flat face's corners are not lowest). A vertex's lowest neighbour is folded in the
+            // faces' order, as std::min({lowest, ...}) did it (the same value, NaNs included).
+            for (std::size_t r = 0; r < corners;) {
+                const std::uint32_t v = static_cast<std::uint32_t>(by_vertex[r].first);
+                double z = INFINITY;
+                for (; r < corners && by_vertex[r].first == v; ++r) {
+                    const std::uint32_t corner = by_vertex[r].second;
+                    const Triangle& t = tris_[face_of(corner)];
+                    const int k = static_cast<int>(corner % 3);
+                    z = std::min({z, at_[t[(k + 1) % 3]].z, at_[t[(k + 2) % 3]].z});
+                }
                 if (z > at_[v].z && inside_cell(at_[v])) out.push_back(at_[v]);
+            }
         }
         points_.insert_at(i, j, Vec3{});  // marks the cell made (an empty list stays findable)
         auto& stored = const_cast<std::vector<Vec3>&>(*points_.at(i, j));

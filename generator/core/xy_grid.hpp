@@ -18,6 +18,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/flat_index.hpp"
 #include "core/geometry.hpp"
 
 namespace cs {
@@ -83,47 +84,27 @@ public:
 private:
     static std::uint64_t key(long i, long j) { return (std::uint64_t(i) << 32) ^ std::uint64_t(j & 0xffffffff); }
 
-    // The cells' item lists, found by key through an open-addressed index (linear probing, at
-    // most half full): a search asks for many empty cells, each one probe.
-    struct Slot {
-        std::uint64_t key = 0;
-        std::uint32_t list = 0;  // the list's place + 1; 0: an empty slot
-    };
-    static std::size_t slot_of(std::uint64_t k, std::size_t mask) {
+    // The cells' item lists, found by key through a FlatIndex: a search asks for many empty cells,
+    // each one probe.
+    static std::uint64_t hash(std::uint64_t k) {
         k ^= k >> 33, k *= 0xff51afd7ed558ccdull, k ^= k >> 33;  // murmur3's finaliser
-        return static_cast<std::size_t>(k) & mask;
+        return k;
     }
     const std::vector<T>* find(std::uint64_t k) const {
-        if (slots_.empty()) return nullptr;
-        const std::size_t mask = slots_.size() - 1;
-        for (std::size_t s = slot_of(k, mask); slots_[s].list != 0; s = (s + 1) & mask)
-            if (slots_[s].key == k) return &lists_[slots_[s].list - 1];
-        return nullptr;
+        const std::size_t at = index_.find(hash(k), [&](std::size_t i) { return keys_[i] == k; });
+        return at == FlatIndex::npos ? nullptr : &lists_[at];
     }
     std::vector<T>& cell(std::uint64_t k) {
-        if (2 * (lists_.size() + 1) > slots_.size()) {
-            std::vector<Slot> old = std::move(slots_);
-            slots_.assign(old.empty() ? 16 : 2 * old.size(), Slot{});
-            const std::size_t mask = slots_.size() - 1;
-            for (const Slot& o : old) {
-                if (o.list == 0) continue;
-                std::size_t s = slot_of(o.key, mask);
-                while (slots_[s].list != 0) s = (s + 1) & mask;
-                slots_[s] = o;
-            }
-        }
-        const std::size_t mask = slots_.size() - 1;
-        std::size_t s = slot_of(k, mask);
-        for (; slots_[s].list != 0; s = (s + 1) & mask)
-            if (slots_[s].key == k) return lists_[slots_[s].list - 1];
-        lists_.emplace_back();
-        slots_[s] = {k, static_cast<std::uint32_t>(lists_.size())};
-        return lists_.back();
+        const auto [at, fresh] = index_.insert(
+            hash(k), lists_.size(), [&](std::size_t i) { return keys_[i] == k; }, [&](std::size_t i) { return hash(keys_[i]); });
+        if (fresh) lists_.emplace_back(), keys_.push_back(k);
+        return lists_[at];
     }
 
     double cell_;
     std::deque<std::vector<T>> lists_;  // a deque: a list stays where it is as cells are added
-    std::vector<Slot> slots_;
+    std::vector<std::uint64_t> keys_;   // each list's cell
+    FlatIndex index_;
 };
 
 }  // namespace cs

@@ -498,24 +498,29 @@ Mesh read_mesh(const std::string& path, bool allow_empty, std::string* contents)
     return parse_mesh(bytes, ext, path, allow_empty, contents);
 }
 
-std::string encode_stl(const Mesh& mesh, const std::string& header) {
-    std::string out(84 + 50 * mesh.faces.size(), '\0');
+std::string encode_stl(const Mesh& mesh, const std::string& header) { return encode_stl(std::vector{&mesh}, header); }
+
+std::string encode_stl(const std::vector<const Mesh*>& parts, const std::string& header) {
+    std::size_t faces = 0;
+    for (const Mesh* m : parts) faces += m->faces.size();
+    std::string out(84 + 50 * faces, '\0');
     std::memcpy(out.data(), header.data(), std::min<size_t>(header.size(), 80));
-    auto n = static_cast<std::uint32_t>(mesh.faces.size());
+    auto n = static_cast<std::uint32_t>(faces);
     std::memcpy(out.data() + 80, &n, 4);
     char* p = out.data() + 84;
-    for (const auto& f : mesh.faces) {
-        Vec3 nrm = normalized(face_normal_unnormalized(mesh, f));
-        float v[12] = {float(nrm.x), float(nrm.y), float(nrm.z)};
-        for (int k = 0; k < 3; ++k) {
-            const Vec3& q = mesh.vertices[f[k]];
-            v[3 + 3 * k] = float(q.x);
-            v[4 + 3 * k] = float(q.y);
-            v[5 + 3 * k] = float(q.z);
+    for (const Mesh* m : parts)
+        for (const auto& f : m->faces) {
+            Vec3 nrm = normalized(face_normal_unnormalized(*m, f));
+            float v[12] = {float(nrm.x), float(nrm.y), float(nrm.z)};
+            for (int k = 0; k < 3; ++k) {
+                const Vec3& q = m->vertices[f[k]];
+                v[3 + 3 * k] = float(q.x);
+                v[4 + 3 * k] = float(q.y);
+                v[5 + 3 * k] = float(q.z);
+            }
+            std::memcpy(p, v, 48);
+            p += 50;
         }
-        std::memcpy(p, v, 48);
-        p += 50;
-    }
     return out;
 }
 

@@ -42,5 +42,9 @@ void write_file_atomic(const std::string& path, std::string_view content);
 
 // The binary STL encoding of `mesh`, as written by write_stl.
 std::string encode_stl(const Mesh& mesh, const std::string& header);
+// The same of the meshes one after the other, byte for byte encode_stl of them appended (a face's
+// record depends only on its corners), without making that mesh.
+// Example: encode_stl({&model, &supports}, "model + supports").
+std::string encode_stl(const std::vector<const Mesh*>& parts, const std::string& header);
 
 }  // namespace cs

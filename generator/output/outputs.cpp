@@ -194,9 +194,7 @@ std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& 
         return xml;
     };
     files.push_back({name + ".supported.stl", [&model, &supports] {
-                         Mesh supported = model;
-                         append(supported, supports);
-                         return encode_stl(supported, "clever-support: model + supports");
+                         return encode_stl({&model, &supports}, "clever-support: model + supports");
                      }});
     files.push_back({name + ".supports.stl", [&supports] { return encode_stl(supports, "clever-support: supports"); }});
     files.push_back({name + ".3mf", [name, &model, &supports, model_lines] {

@@ -1,6 +1,8 @@
 #include "query/model_query.hpp"
 #include "query/triangle_bvh.hpp"
 
+#include "core/flat_index.hpp"
+
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
@@ -244,31 +246,22 @@ struct BitsEqual {
     }
 };
 
-// Answers by their question, in the order given, found through an open-addressed index (linear
-// probing, at most 70 % full) of each answer's place and its hash's high half: a question not
-// asked before costs one cache miss, where a node-based map's bucket and chain cost two or three
-// (the growth of a tree asks hundreds of thousands of questions, most of them once).
+// Answers by their question, in the order given, found through a FlatIndex: a question not asked
+// before costs one cache miss, where a node-based map's bucket and chain cost two or three (the
+// growth of a tree asks hundreds of thousands of questions, most of them once).
 template <std::size_t N, typename V>
 class Answers {
 public:
     const V* find(const Key<N>& k) const {
-        if (slots_.empty()) return nullptr;
-        const std::uint64_t h = KeyHash{}(k);
-        const std::size_t mask = slots_.size() - 1;
-        for (std::size_t i = h & mask; slots_[i] != 0; i = (i + 1) & mask)
-            if (const Entry* e = match(slots_[i], h, k)) return &e->value;
-        return nullptr;
+        const std::size_t at = index_.find(KeyHash{}(k), [&](std::size_t i) { return BitsEqual{}(entries_[i].key, k); });
+        return at == FlatIndex::npos ? nullptr : &entries_[at].value;
     }
     // Keeps the first answer to a question (as std::unordered_map::emplace).
     void emplace(const Key<N>& k, const V& v) {
-        if (10 * (entries_.size() + 1) > 7 * slots_.size()) grow();
-        const std::uint64_t h = KeyHash{}(k);
-        const std::size_t mask = slots_.size() - 1;
-        std::size_t i = h & mask;
-        for (; slots_[i] != 0; i = (i + 1) & mask)
-            if (match(slots_[i], h, k)) return;
-        entries_.push_back({k, v});
-        slots_[i] = (h & kHigh) | entries_.size();  // the place + 1: 0 is an empty slot
+        const bool fresh = index_.insert(
+            KeyHash{}(k), entries_.size(), [&](std::size_t i) { return BitsEqual{}(entries_[i].key, k); },
+            [&](std::size_t i) { return std::uint64_t(KeyHash{}(entries_[i].key)); }).second;
+        if (fresh) entries_.push_back({k, v});
     }
 
 private:
@@ -276,24 +269,8 @@ private:
         Key<N> key;
         V value;
     };
-    static constexpr std::uint64_t kHigh = 0xffffffff00000000ull;
     std::vector<Entry> entries_;
-    std::vector<std::uint64_t> slots_;
-    const Entry* match(std::uint64_t slot, std::uint64_t h, const Key<N>& k) const {
-        if ((slot & kHigh) != (h & kHigh)) return nullptr;
-        const Entry& e = entries_[(slot & ~kHigh) - 1];
-        return BitsEqual{}(e.key, k) ? &e : nullptr;
-    }
-    void grow() {
-        slots_.assign(slots_.empty() ? 64 : 2 * slots_.size(), 0);
-        const std::size_t mask = slots_.size() - 1;
-        for (std::size_t e = 0; e < entries_.size(); ++e) {
-            const std::uint64_t h = KeyHash{}(entries_[e].key);
-            std::size_t i = h & mask;
-            while (slots_[i] != 0) i = (i + 1) & mask;
-            slots_[i] = (h & kHigh) | (e + 1);
-        }
-    }
+    FlatIndex index_;
 };
 
 Key<3> key(const Vec3& a) { return {a.x, a.y, a.z}; }
@@ -457,6 +434,9 @@ bool ModelQuery::inside_uncached(const Vec3& p) const {
 std::size_t count_self_intersections(const Mesh& mesh, std::size_t limit) {
     using SM = CGAL::Surface_mesh<Point>;
     SM sm;
+    // Room for a closed mesh's elements at once (an edge to two faces): no array is copied as it
+    // grows. Capacity only: the mesh built is the same.
+    sm.reserve(mesh.vertices.size(), 3 * mesh.faces.size() / 2 + 1, mesh.faces.size());
     std::vector<SM::Vertex_index> vs;
     vs.reserve(mesh.vertices.size());
     for (const auto& v : mesh.vertices) vs.push_back(sm.add_vertex(pt(v)));

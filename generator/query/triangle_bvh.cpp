@@ -17,11 +17,14 @@ double above(double v) { return v + 1e-9 * (1 + std::abs(v)); }
 
 namespace {
 
-// A face while the hierarchy is built: its widened box and its box's centre, kept together so each
-// level's pass over a node's faces reads memory in order.
+// A face while the hierarchy is built: its widened box, kept together so each level's pass over a
+// node's faces reads memory in order. Its centre is worked out where it is needed, not stored:
+// each level's passes read every item of the model, so a smaller one (56 bytes, not 80) is read
+// sooner; the centre is the same value either way.
 struct Item {
-    double lo[3], hi[3], centre[3];
+    double lo[3], hi[3];
     std::uint32_t face;
+    double centre(int k) const { return (lo[k] + hi[k]) / 2; }
 };
 
 }  // namespace
@@ -48,9 +51,10 @@ TriangleBvh::TriangleBvh(const Mesh& mesh) {
             const double c[3] = {v.x, v.y, v.z};
             for (int k = 0; k < 3; ++k) it.lo[k] = std::min(it.lo[k], c[k]), it.hi[k] = std::max(it.hi[k], c[k]);
         }
-        for (int k = 0; k < 3; ++k) it.lo[k] = below(it.lo[k]), it.hi[k] = above(it.hi[k]), it.centre[k] = (it.lo[k] + it.hi[k]) / 2;
+        for (int k = 0; k < 3; ++k) it.lo[k] = below(it.lo[k]), it.hi[k] = above(it.hi[k]);
+        const double centre[3] = {it.centre(0), it.centre(1), it.centre(2)};
         grow(box, it.lo, it.hi);
-        grow(centres, it.centre, it.centre);
+        grow(centres, centre, centre);
     }
     nodes_.reserve(2 * (n / kLeafSize + 1));
 
@@ -83,13 +87,14 @@ TriangleBvh::TriangleBvh(const Mesh& mesh) {
         Box halves[2] = {empty, empty}, half_centres[2] = {empty, empty};
         if (extent > 0 && depth < 40) {
             const double scale = kBins / extent;
-            auto bin_of = [&](const Item& it) { return std::min(kBins - 1, static_cast<int>((it.centre[axis] - lo) * scale)); };
+            auto bin_of = [&](const Item& it) { return std::min(kBins - 1, static_cast<int>((it.centre(axis) - lo) * scale)); };
             Bin bins[kBins];
             for (auto& b : bins) b.box = b.centres = empty;
             for (std::uint32_t i = begin; i < end; ++i) {
                 Bin& b = bins[bin_of(items[i])];
+                const double centre[3] = {items[i].centre(0), items[i].centre(1), items[i].centre(2)};
                 grow(b.box, items[i].lo, items[i].hi);
-                grow(b.centres, items[i].centre, items[i].centre);
+                grow(b.centres, centre, centre);
                 ++b.count;
             }
             double right_area[kBins] = {};
@@ -121,11 +126,12 @@ TriangleBvh::TriangleBvh(const Mesh& mesh) {
             mid = begin + (end - begin) / 2;
             std::nth_element(items.begin() + begin, items.begin() + mid, items.begin() + end,
                              [&](const Item& a, const Item& b) {
-                                 return a.centre[axis] < b.centre[axis] || (a.centre[axis] == b.centre[axis] && a.face < b.face);
+                                 return a.centre(axis) < b.centre(axis) || (a.centre(axis) == b.centre(axis) && a.face < b.face);
                              });
             for (std::uint32_t i = begin; i < end; ++i) {
+                const double centre[3] = {items[i].centre(0), items[i].centre(1), items[i].centre(2)};
                 grow(halves[i >= mid], items[i].lo, items[i].hi);
-                grow(half_centres[i >= mid], items[i].centre, items[i].centre);
+                grow(half_centres[i >= mid], centre, centre);
             }
         }
         self(self, begin, mid, halves[0], half_centres[0], depth + 1);
