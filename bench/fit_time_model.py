@@ -2,6 +2,7 @@
 """Fits the tree prices of the generator's slicer time model (generator/core/slicer_time.hpp) to G-code.
 
 usage: bench/fit_time_model.py TUNING.json [CHECK.json ...]
+       bench/fit_time_model.py --walls TUNING.json [CHECK.json ...]
 
 TUNING.json is a hand-off run of the tuning set (bench/handoff.py --tuning): for every model it holds
 what the generator counted for its tree (report: slicer_estimate island_layers, outline_mm, travel_mm)
@@ -13,6 +14,15 @@ and the seconds the supports added in each slicer's G-code (route minus the bare
 by least squares on the relative error (every model weighs the same), prints the three prices and,
 for TUNING.json and each CHECK.json (e.g. the validation run, never fitted on), the estimate over the
 G-code per model with its median and worst.
+
+With --walls it fits the price of a wall island instead (SlicerRoute::wall_island_s): per route, the
+seconds the G-code spends on our walls (slicers/wall_time.py, recorded by handoff.py as the route's
+"walls") against the report's walls (slicer_estimate.walls: their lines' seconds on the route, which
+are physics, and their island-layers):
+
+    wall seconds = line_seconds + wall_island_s * island_layers
+
+least squares on the relative error, over the models that have walls.
 """
 import json
 import math
@@ -65,7 +75,39 @@ def report(label, data, prices):
     print("    " + ", ".join(f"{n} {r:.2f}" for n, r in ratios))
 
 
+def wall_rows(path, route):
+    out = []
+    report_route = {"cura_ours_mesh": "cura_support_mesh", "prusa_ours_3mf": "prusa_3mf"}[route]
+    for name, m in json.load(open(path))["models"].items():
+        est = (m.get("gen", {}).get("tree", {}).get("slicer_estimate") or {}).get("walls")
+        g = (m.get("slices", {}).get(route) or {}).get("walls")
+        if est and g and g["wall_s"] > 0 and est["island_layers"] > 0:
+            out.append((name, est["routes"][report_route]["line_seconds"], est["island_layers"], g["wall_s"]))
+    return out
+
+
+def fit_walls(paths):
+    for route in ROUTES:
+        data = wall_rows(paths[0], route)
+        if not data:
+            print(f"{route}: no model with walls")
+            continue
+        # minimise sum(((line + b * islands) / t - 1)^2) over b
+        b = (sum(y / t * (1 - x / t) for _, x, y, t in data) / sum((y / t) ** 2 for _, x, y, t in data))
+        print(f"{route}: {len(data)} models with walls; wall_island_s {b:.4f}")
+        for path in paths:
+            rows = wall_rows(path, route)
+            if not rows:
+                continue
+            rs = [(n, (x + b * y) / t, x / t) for n, x, y, t in rows]
+            print(f"  {path}: wall estimate / G-code median {statistics.median(r for _, r, _ in rs):.2f} "
+                  f"(lines alone {statistics.median(r for _, _, r in rs):.2f})")
+            print("    " + ", ".join(f"{n} {r:.2f}" for n, r, _ in rs))
+
+
 def main(paths):
+    if paths and paths[0] == "--walls":
+        return fit_walls(paths[1:])
     for route in ROUTES:
         data = rows(paths[0], route)
         if len(data) < len(TERMS):

@@ -49,6 +49,7 @@ import gcode_stats  # noqa: E402
 import gcode_time  # noqa: E402
 import printed_bodies  # noqa: E402
 import slice as slice_stl  # noqa: E402
+import wall_time  # noqa: E402
 
 DEFAULT_MODELS = ["u_overhang", "extruder_idler", "rocker_arm", "armadillo", "beast", "nefertiti"]
 # The tuning set of --tuning: every shared benchmark model but menger_sponge3, whose Cura tree slice alone
@@ -85,6 +86,8 @@ SUPPORT_SECTION_ROUTES = {"cura_normal", "cura_tree", "cura_ours_mesh", "cura_co
                           "prusa_snug"}
 # Routes whose G-code is searched for our tree's bodies, layer by layer (printed_bodies.py).
 PRINTED_BODIES_ROUTES = {"cura_ours_model", "cura_ours_mesh", "prusa_ours_3mf", "prusa_ours_model"}
+# Routes whose G-code is split into our walls' seconds and the rest (slicers/wall_time.py).
+WALL_ROUTES = {"cura_ours_mesh", "prusa_ours_3mf"}
 # The bed both routes centre the print on (printed_bodies.py places the G-code back by it).
 BED_MM = json.load(open(os.path.join(HERE, "slicers", "profile.json")))["common"]["bed_mm"]
 # Routes that print our mesh (sliced volume is compared with the mesh volume).
@@ -195,6 +198,8 @@ def slice_route(args, key, name, tree, columns, work):
         out["printed_bodies"] = printed_bodies.measure(os.path.join(out_dir, "out.gcode"), stem + ".supports.stl",
                                                        stem + ".model.stl", float(BED_MM[0]), float(BED_MM[1]),
                                                        res.get("removed_empty_first_layers", 0))
+    if key in WALL_ROUTES:
+        out["walls"] = walls_of(os.path.join(out_dir, "out.gcode"), tree, name)
     # Keep the command, settings and logs; drop the bulky G-code and meshes.
     for f in ("out.gcode", "merged.stl", "support_mesh.stl"):
         try:
@@ -203,6 +208,14 @@ def slice_route(args, key, name, tree, columns, work):
             pass
     shutil.rmtree(os.path.join(out_dir, "prusa-datadir"), ignore_errors=True)
     return out
+
+
+def walls_of(gcode, tree, name):
+    """The seconds the G-code spends on our walls (slicers/wall_time.py), where the tree has walls."""
+    stem = os.path.join(tree["dir"], name)
+    if not wall_time.read_walls(stem + ".scad"):
+        return None
+    return wall_time.measure(gcode, stem + ".scad", stem + ".supports.stl", stem + ".model.stl")
 
 
 def reparse(work, name, m):
@@ -216,6 +229,8 @@ def reparse(work, name, m):
         if "error" not in r and os.path.exists(gz):
             r["gcode"] = gcode_stats.parse(gz)
             r["time"] = gcode_time.split(gz, r["print_time_s"])
+            if key in WALL_ROUTES and "dir" in m.get("gen", {}).get("tree", {}):
+                r["walls"] = walls_of(gz, m["gen"]["tree"], name)
 
 
 def ratio(a, b):

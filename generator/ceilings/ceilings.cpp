@@ -19,10 +19,71 @@ double wall_line_seconds(const SlicerRoute& r, double length, double height, dou
     return height / p.layer_height * line_route_seconds(r, length, thickness);
 }
 
-double walls_line_seconds(const SlicerRoute& r, const std::vector<CeilingWall>& walls, const Params& p) {
-    double s = 0;
-    for (const CeilingWall& w : walls) s += wall_line_seconds(r, horizontal_distance(w.from, w.to), w.top - w.bottom, w.thickness, p);
-    return s;
+WallsPrinted walls_printed(const SlicerRoute& r, const std::vector<CeilingWall>& walls, const Params& p) {
+    WallsPrinted out;
+    if (walls.empty()) return out;
+    // Pieces in line meet end to end (a row's stations are written to the same coordinates); pieces
+    // touch where an end of one lies within their half thicknesses of the other's line (a join ends
+    // inside the rows it joins), and the slicer's outline of the two is one.
+    constexpr double kMeet = 1e-3;
+    auto touch = [](const CeilingWall& u, const CeilingWall& v) {
+        const double reach = 0.5 * (u.thickness + v.thickness) + kMeet;
+        auto near_line = [&](const Vec3& e, const CeilingWall& w) {
+            const double dx = w.to.x - w.from.x, dy = w.to.y - w.from.y, ll = dx * dx + dy * dy;
+            const double t = ll > 0 ? std::clamp(((e.x - w.from.x) * dx + (e.y - w.from.y) * dy) / ll, 0.0, 1.0) : 0.0;
+            return std::hypot(e.x - w.from.x - t * dx, e.y - w.from.y - t * dy) <= reach;
+        };
+        return near_line(u.from, v) || near_line(u.to, v) || near_line(v.from, u) || near_line(v.to, u);
+    };
+    struct Pair {
+        std::size_t a, b;
+        bool in_line;  // same direction and thickness: one line where both are printed
+    };
+    std::vector<Pair> pairs;
+    auto direction = [](const CeilingWall& w) {
+        const double d = horizontal_distance(w.from, w.to);
+        return d > 0 ? Vec3{(w.to.x - w.from.x) / d, (w.to.y - w.from.y) / d, 0} : Vec3{0, 0, 0};
+    };
+    for (std::size_t a = 0; a < walls.size(); ++a)
+        for (std::size_t b = a + 1; b < walls.size(); ++b) {
+            const CeilingWall &u = walls[a], &v = walls[b];
+            if (!touch(u, v)) continue;
+            const bool meet = horizontal_distance(u.from, v.from) < kMeet || horizontal_distance(u.from, v.to) < kMeet ||
+                              horizontal_distance(u.to, v.from) < kMeet || horizontal_distance(u.to, v.to) < kMeet;
+            const Vec3 du = direction(u), dv = direction(v);
+            pairs.push_back({a, b, meet && std::abs(du.x * dv.y - du.y * dv.x) < 1e-3 && u.thickness == v.thickness});
+        }
+    double low = walls.front().bottom, high = walls.front().top;
+    for (const CeilingWall& w : walls) low = std::min(low, w.bottom), high = std::max(high, w.top);
+    std::vector<std::size_t> island(walls.size()), line(walls.size());
+    std::vector<double> length(walls.size());
+    auto root = [](std::vector<std::size_t>& up, std::size_t i) {
+        while (up[i] != i) i = up[i] = up[up[i]];
+        return i;
+    };
+    for (long k = std::max(0L, static_cast<long>(std::floor(low / p.layer_height))); (k + 0.5) * p.layer_height < high; ++k) {
+        const double z = (k + 0.5) * p.layer_height;
+        auto printed = [&](std::size_t i) { return walls[i].bottom <= z && z < walls[i].top; };
+        for (std::size_t i = 0; i < walls.size(); ++i) island[i] = line[i] = i, length[i] = 0;
+        for (const Pair& q : pairs) {
+            if (!printed(q.a) || !printed(q.b)) continue;
+            island[root(island, q.a)] = root(island, q.b);
+            if (q.in_line) line[root(line, q.a)] = root(line, q.b);
+        }
+        for (std::size_t i = 0; i < walls.size(); ++i)
+            if (printed(i)) {
+                out.island_layers += root(island, i) == i;
+                length[root(line, i)] += horizontal_distance(walls[i].from, walls[i].to);
+            }
+        for (std::size_t i = 0; i < walls.size(); ++i)
+            if (printed(i) && root(line, i) == i) out.line_seconds += line_route_seconds(r, length[i], walls[i].thickness);
+    }
+    return out;
+}
+
+double walls_seconds(const SlicerRoute& r, const std::vector<CeilingWall>& walls, const Params& p) {
+    const WallsPrinted w = walls_printed(r, walls, p);
+    return w.line_seconds + r.wall_island_s * w.island_layers;
 }
 
 namespace {
@@ -324,7 +385,8 @@ struct RegionWalls {
 };
 
 // Seconds the region's walls add on a route: each run's line on every layer it spans, plus, on
-// every layer, the meanders' islands and the hops between them (about a span each).
+// every layer, the route's price of each meander's island (SlicerRoute::wall_island_s: the hop to
+// it, its retraction, start and stop), as walls_seconds prices the walls the pipeline keeps.
 double walls_route_seconds(const SlicerRoute& r, const RegionWalls& w, const Params& p) {
     double s = 0;
     for (const Run& run : w.walls) {
@@ -335,7 +397,7 @@ double walls_route_seconds(const SlicerRoute& r, const RegionWalls& w, const Par
         s += wall_line_seconds(r, horizontal_distance(run.top.front(), run.top.back()), height, thickness, p);
     }
     const double layers = w.height / p.layer_height, pieces = static_cast<double>(w.pieces);
-    return s + layers * tree_route_seconds(r, pieces, 0, (pieces - 1) * p.ceiling_span);
+    return s + layers * pieces * r.wall_island_s;
 }
 
 // Which way the rows run: where the ceiling is level. A sloping or round ceiling then gets long

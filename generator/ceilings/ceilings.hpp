@@ -134,10 +134,21 @@ bool ceilings_laid_out(const Params& p);
 
 struct SlicerRoute;
 // Seconds a wall `length` long, `height` tall and `thickness` wide adds on a route: its line
-// (core/slicer_time's line_route_seconds) on every layer it spans. walls_line_seconds: of all the
-// pieces (the lines alone; what the pricing of a region adds for its meanders' islands is left out).
+// (core/slicer_time's line_route_seconds) on every layer it spans.
 double wall_line_seconds(const SlicerRoute& r, double length, double height, double thickness, const Params& p);
-double walls_line_seconds(const SlicerRoute& r, const std::vector<CeilingWall>& walls, const Params& p);
+
+// The walls as a slicer prints them, layer by layer (a layer holds a piece where its middle height
+// lies between the piece's foot and top): pieces in line that meet end to end (a row whose top steps
+// with its ceiling, one station a piece) draw one line, and pieces that meet (a meander: its rows and
+// joins) are one island. line_seconds: each line's line_route_seconds on a route.
+struct WallsPrinted {
+    double island_layers = 0;  // islands, summed over the layers
+    double line_seconds = 0;
+};
+WallsPrinted walls_printed(const SlicerRoute& r, const std::vector<CeilingWall>& walls, const Params& p);
+// Seconds all the walls add on a route: their lines, and the route's price of a wall island
+// (SlicerRoute::wall_island_s) for each island on each layer.
+double walls_seconds(const SlicerRoute& r, const std::vector<CeilingWall>& walls, const Params& p);
 
 // Closed, outward-facing mesh of one wall: a box, w.thickness wide across from-to, bottom to top,
 // its faces as triangles.

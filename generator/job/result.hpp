@@ -29,7 +29,8 @@ struct Supports {
     double bodies_volume = 0;  // the bodies' volumes added up, overlaps counted twice, mm^3
                                // (both add the walls' own; the ends of joins inside rows count twice)
     double length = 0;  // total strut length (mm)
-    SlicerCost slicer_cost;  // estimate_slicer_cost of the sized tree, computed once per tree
+    SlicerCost slicer_cost;  // estimate_slicer_cost of the sized tree, computed once per tree, plus the walls
+    WallsPrinted walls_cura, walls_prusa;  // the walls' part of it per route (ceilings/ceilings.hpp)
 };
 
 struct Stage {

@@ -72,7 +72,11 @@ json supports_json(const Supports& s, const Params& p) {
                                  {"travel_mm", cost.travel_mm},
                                  {"seconds", cost.seconds},
                                  {"routes", {{"cura_support_mesh", {{"seconds", cost.cura_seconds}}},
-                                             {"prusa_3mf", {{"seconds", cost.prusa_seconds}}}}}}}};
+                                             {"prusa_3mf", {{"seconds", cost.prusa_seconds}}}}},
+                                 // the walls' part: their islands and their lines' seconds per route
+                                 {"walls", {{"island_layers", s.walls_cura.island_layers},
+                                            {"routes", {{"cura_support_mesh", {{"line_seconds", s.walls_cura.line_seconds}}},
+                                                        {"prusa_3mf", {{"line_seconds", s.walls_prusa.line_seconds}}}}}}}}}};
 }
 
 json edits_json(const ManualEdits& e, std::size_t blocked_samples) {

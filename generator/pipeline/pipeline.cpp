@@ -227,9 +227,11 @@ Supports finish_supports(SizedTree grown, const Params& p, const std::vector<int
     s.mesh = bodies_mesh(s.bodies, p.wall_thickness);
     s.volume = solid_volume(s.bodies, p.wall_thickness);
     s.walls = std::move(walls);
-    // The estimate covers the walls' lines too (a region all walls would otherwise cost nothing).
-    s.slicer_cost.cura_seconds += walls_line_seconds(kCuraRoute, s.walls, p);
-    s.slicer_cost.prusa_seconds += walls_line_seconds(kPrusaRoute, s.walls, p);
+    // The estimate covers the walls too (a region all walls would otherwise cost nothing).
+    s.walls_cura = walls_printed(kCuraRoute, s.walls, p);
+    s.walls_prusa = walls_printed(kPrusaRoute, s.walls, p);
+    s.slicer_cost.cura_seconds += walls_seconds(kCuraRoute, s.walls, p);
+    s.slicer_cost.prusa_seconds += walls_seconds(kPrusaRoute, s.walls, p);
     s.slicer_cost.seconds = 0.5 * (s.slicer_cost.cura_seconds + s.slicer_cost.prusa_seconds);
     for (const auto& w : s.walls) {
         const Mesh m = wall_mesh(w);

@@ -6,6 +6,7 @@
 
 #include "ceilings/ceilings.hpp"
 #include "check/check.hpp"
+#include "core/slicer_time.hpp"
 #include "overhang/overhang.hpp"
 #include "pipeline/pipeline.hpp"
 #include "query/model_query.hpp"
@@ -571,5 +572,36 @@ TEST(CheckWalls, AWallIsJudgedForStrengthByItsThicknessAtAnyAngle) {
         CeilingWall sized = thin;
         sized.thickness = wall_thickness_for(p, 20);
         EXPECT_EQ(check_supports(model, wall_mesh(sized), p, {}).weak_bodies, 0u) << what;
+    }
+}
+
+// The walls' seconds as a slicer prints them: a row under a sloping ceiling is a staircase of pieces
+// one station long (their tops step with the ceiling), which the slicer draws as one line per layer,
+// shorter as the layers rise; a meander (two rows and their join) is one island a layer. Until
+// 2026-11-26 the estimate priced each piece as a line of its own (a start and a stop each, on every
+// layer it spans): extruder_idler's walls at 1.95x the seconds CuraEngine's G-code spends on them.
+TEST(Ceilings, AStaircaseRowIsOneLineAndAMeanderOneIslandALayer) {
+    Params p;
+    std::vector<CeilingWall> walls;
+    for (int i = 0; i < 10; ++i)  // a row along x, 10 pieces of 0.5 mm, tops 4.0 down to 3.1 mm
+        walls.push_back({{0.5 * i, 0, 0}, {0.5 * (i + 1), 0, 0}, 0, 4.0 - 0.1 * i, false, 0.5});
+    walls.push_back({{5, 0, 0}, {5, 3, 0}, 0, 3.0, true, 0.5});  // the join, to a flat row back
+    walls.push_back({{5, 3, 0}, {0, 3, 0}, 0, 3.0, false, 0.5});
+    for (const SlicerRoute& r : {kCuraRoute, kPrusaRoute}) {
+        const WallsPrinted w = walls_printed(r, walls, p);
+        // 15 layers under 3.0 mm hold all three; 5 more hold the row's first pieces (up to 4.0 mm)
+        EXPECT_DOUBLE_EQ(w.island_layers, 20);
+        double lines = 15 * (line_route_seconds(r, 5, 0.5) * 2 + line_route_seconds(r, 3, 0.5));
+        for (int k = 15; k < 20; ++k) {  // layer k's middle (k + 0.5) * 0.2 mm is under the tops of the first n
+            int n = 0;
+            for (int i = 0; i < 10; ++i) n += (k + 0.5) * p.layer_height < 4.0 - 0.1 * i;
+            lines += line_route_seconds(r, 0.5 * n, 0.5);
+        }
+        EXPECT_NEAR(w.line_seconds, lines, 1e-9);
+        EXPECT_NEAR(walls_seconds(r, walls, p), lines + r.wall_island_s * 20, 1e-9);
+        // each piece its own line: dearer by the starts and stops of 9 more lines a layer
+        double apart = 0;
+        for (const CeilingWall& c : walls) apart += wall_line_seconds(r, horizontal_distance(c.from, c.to), c.top - c.bottom, c.thickness, p);
+        EXPECT_GT(apart, 1.3 * w.line_seconds);
     }
 }
