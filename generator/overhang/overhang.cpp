@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <tuple>
 
 #include "core/rules.hpp"
 #include "core/xy_grid.hpp"
@@ -74,6 +76,10 @@ constexpr double kEdgeAdvance = 0.98;
 // overhang only partly fills, by up to this margin); the top-up does that only inside full cells
 // (LatticeCells) and judges everything else with the margin, and so leaves no gap at all.
 constexpr double kReachMarginOfSpacing = std::numbers::sqrt2 / 2 / kDemandRefinement;
+// A top-up sample whose support does not fit moves to the nearest point within reach where one
+// does: the points tried lie at least this far apart (mm), and at most this many are tried.
+constexpr double kCandidateSpacing = 0.25;
+constexpr std::size_t kMostCandidates = 64;
 static_assert(kStrictEdgeStepOfReach * std::numbers::sqrt2 / 2 / 2 <= kReachMarginOfSpacing + 1e-12);
 
 // The reach our own points cover with: the reach less that margin.
@@ -264,11 +270,18 @@ bool covers(const Vec3& sample, const Vec3& x, double reach, double critical_ang
     return within_reach(sample, x, reach) && std::abs(sample.z - x.z) <= surface_rise(reach, critical_angle_deg);
 }
 
+// How far under an overhang point its probes start (the ray down, the test for material right
+// below): a tenth of the thinnest wall that matters, clear of the face's own rounding.
+constexpr double kJustBelow = 0.01;
+
+double air_below(const ModelQuery& model, const Vec3& x) {
+    auto hit = model.first_hit(x - Vec3{0, 0, kJustBelow}, {0, 0, -1});
+    return x.z - (hit ? hit->point.z : 0.0);
+}
+
 bool rests_on_material(const ModelQuery& model, const Vec3& x, double touching_space) {
-    const Vec3 just_below{0, 0, 0.01};
-    if (model.inside(x - just_below)) return true;  // overlapping shells: not a surface of the print
-    auto hit = model.first_hit(x - just_below, {0, 0, -1});
-    return x.z - (hit ? hit->point.z : 0.0) <= touching_space;
+    if (model.inside(x - Vec3{0, 0, kJustBelow})) return true;  // overlapping shells: not a surface of the print
+    return air_below(model, x) <= touching_space;
 }
 
 
@@ -441,7 +454,8 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
 }
 
 std::vector<Sample> top_up_samples(const Mesh& m, const OverhangOptions& o, const ModelQuery* model,
-                                   const OverhangSamples& sampled, const std::vector<Vec3>& coverers) {
+                                   const OverhangSamples& sampled, const std::vector<Vec3>& coverers,
+                                   const SupportAt& support_at) {
     const double s = o.sampling_distance, reach = coverage_reach(s);
     auto cls = classify_faces(m, o);
     auto rests = [&](const Vec3& x) { return model && rests_on_material(*model, x, o.touching_space); };
@@ -458,8 +472,59 @@ std::vector<Sample> top_up_samples(const Mesh& m, const OverhangOptions& o, cons
     auto needs = [&](const Vec3& x, double above) {
         return x.z >= o.bed_height && !cells.full_cell_around(x, above) && !grid.covered(x, above) && !rests(x);
     };
-    fill_demand(coverage_demand(m, cls, sampled.edges, o, kStrictEdgeStepOfReach), o, needs, rests, [&](const Vec3& x, SampleKind kind) {
+    const Demand demand = coverage_demand(m, cls, sampled.edges, o, kStrictEdgeStepOfReach);
+    const Cover lean{lean_reach(o), o.critical_angle};
+    std::optional<XyGrid<Vec3>> near;  // the demand by place, made for the first sample whose support does not fit
+    // Where no support fits under x: the nearest demand point within reach of x whose support
+    // fits and covers x, the candidates kCandidateSpacing apart at least, kMostCandidates of them.
+    auto moved_in = [&](const Vec3& x) -> std::optional<std::pair<Vec3, Vec3>> {
+        if (!near) near = demand_grid(demand, lean.reach);
+        std::vector<Vec3> cands;
+        near->visit_near(x, 1, [&](const Vec3& y) {
+            if (y.z >= o.bed_height && lean(y, x) && !(y == x)) cands.push_back(y);
+            return false;
+        });
+        std::sort(cands.begin(), cands.end(), [&](const Vec3& a, const Vec3& b) {
+            const double da = horizontal_distance(a, x), db = horizontal_distance(b, x);
+            if (da != db) return da < db;
+            return std::tie(a.z, a.x, a.y) > std::tie(b.z, b.x, b.y);
+        });
+        std::vector<Vec3> tried;
+        for (const Vec3& y : cands) {
+            if (tried.size() >= kMostCandidates) break;
+            if (std::any_of(tried.begin(), tried.end(), [&](const Vec3& t) { return horizontal_distance(t, y) < kCandidateSpacing; }))
+                continue;
+            tried.push_back(y);
+            if (rests(y)) continue;
+            if (const auto c = support_at(y); c && lean(*c, x)) return std::pair{y, *c};
+        }
+        return std::nullopt;
+    };
+    // What holds the overhang up at the full reach (`check`'s): a point within it is left as before.
+    CoverGrid full{reach, o.critical_angle};
+    if (support_at) {
+        for (const auto& c : coverers) full.add(c);
+        for (const auto& a : sampled.anchors) full.add(a);
+    }
+    // Would a sample left bare at x leave some point it was to cover beyond the full reach of
+    // everything that holds the overhang up?
+    auto beyond_full_reach = [&](const Vec3& x) {
+        if (!near) near = demand_grid(demand, lean.reach);
+        return near->visit_near(x, 1, [&](const Vec3& y) {
+            return y.z >= o.bed_height && lean(x, y) && !full.covered(y) && !rests(y);
+        });
+    };
+    fill_demand(demand, o, needs, rests, [&](const Vec3& x, SampleKind kind) {
+        const std::optional<Vec3> own = support_at ? support_at(x) : std::nullopt;
+        if (support_at && !own && beyond_full_reach(x))
+            if (const auto moved = moved_in(x)) {
+                full.add(moved->second);
+                grid.add(moved->second);
+                out.push_back({moved->first, kind});
+                return;
+            }
         grid.add(x);
+        if (own) full.add(*own);  // a sample left bare holds nothing up
         out.push_back({x, kind});
     }, false);
     sort_top_down(out);

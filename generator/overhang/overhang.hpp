@@ -24,6 +24,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -89,6 +91,11 @@ struct Cover {
     double reach, rise;
 };
 
+// The air straight below an overhang point: down to the first face a ray meets from just under
+// the point (the bed, z = 0, when none). The ray starts far enough under the point that a wall
+// rising from the rim the point lies on, which the ray runs along, is not met at the point itself.
+double air_below(const ModelQuery& model, const Vec3& x);
+
 // Does an overhang point rest on material below it (inside overlapping shells, or with at most
 // `touching_space` of air below)? Such a point needs no support (and gets no contact).
 bool rests_on_material(const ModelQuery& model, const Vec3& x, double touching_space);
@@ -125,7 +132,15 @@ void sort_top_down(std::vector<Sample>& samples);
 // The same demand and the same rules as sample_overhangs, whose result `sampled` gives the rims,
 // ridges and inside corners; a coverer still on its lattice point counts as that lattice point.
 // Sorted as sample_overhangs sorts; empty when all is covered.
+// `support_at` (given by the stage that places supports): where the support a sample at x would
+// get holds the overhang up (its tip's top, at x's height), nullopt where none fits (a knife edge,
+// a slot too low for a pillar). A sample goes on the uncovered point itself when its support fits
+// there, or when, bare, it would leave no point near it beyond the full reach (`check`'s) of what
+// holds the overhang up (it then adds nothing built, as before); else on the nearest point of the
+// overhang, within reach of it, whose support fits and still covers it; else on the point, bare.
+using SupportAt = std::function<std::optional<Vec3>(const Vec3&)>;
 std::vector<Sample> top_up_samples(const Mesh& m, const OverhangOptions& o, const ModelQuery* model,
-                                   const OverhangSamples& sampled, const std::vector<Vec3>& coverers);
+                                   const OverhangSamples& sampled, const std::vector<Vec3>& coverers,
+                                   const SupportAt& support_at = {});
 
 }  // namespace cs

@@ -400,7 +400,12 @@ std::vector<Vec3> lost_samples(const SupportTree& hung, const SupportTree& grown
 std::vector<Sample> samples_beyond_reach(const Mesh& model, const OverhangOptions& oo, const ModelQuery& q,
                                          const OverhangSamples& sampled, const std::vector<Vec3>& held,
                                          const std::vector<Box3>& blockers, const Params& p) {
-    auto more = top_up_samples(model, oo, &q, sampled, held);
+    // Where a sample's own leaf or pillar would hold the overhang up, hung alone.
+    auto support_at = [&](const Vec3& x) -> std::optional<Vec3> {
+        const auto at = tip_tops(hang_leaves(q, {Sample{x, SampleKind::GapFill}}, p, blockers));
+        return at.empty() ? std::nullopt : std::optional{at.front().second};
+    };
+    auto more = top_up_samples(model, oo, &q, sampled, held, support_at);
     std::erase_if(more, [&](const Sample& s) { return in_support_blocker(s.p, blockers, p); });
     return more;
 }

@@ -110,16 +110,13 @@ private:
     void hang_leaves(const std::vector<Sample>& samples) {
         const double tip = p_.gap + p_.tip_length;
         for (const auto& s : samples) {
-            // Start just below the sample so the ray does not report the sample's own face.
-            const Vec3 start = s.p - Vec3{0, 0, kTreeTuning.ray_start_below_sample};
             // A face with material right below it (overlapping shells) is no overhang.
             if (model_.inside(s.p - Vec3{0, 0, kTreeTuning.inside_probe_below_sample})) {
                 ++t_.stats.internal;
                 continue;
             }
-            auto hit = model_.first_hit(start, {0, 0, -1});
-            double below = hit ? hit->point.z : 0.0;
-            double free = s.p.z - below;
+            // The air below it, as the sampling judges what rests on material (overhang.hpp).
+            const double free = air_below(model_, s.p);
             if (free <= touching_space(p_)) {
                 ++t_.stats.touching;
                 continue;
@@ -128,7 +125,9 @@ private:
                 auto fit = hang_pillar(s.p);
                 t_.stats.bridged += fit == PillarFit::TooLow;
                 t_.stats.dropped += fit == PillarFit::NoRoom;
-                if (fit == PillarFit::NoRoom) t_.no_pillar.push_back(s.p);
+                // Bridged or given up, the sample holds nothing up: the print bridges it only
+                // where the overhang hangs no more than touching_space above what is below.
+                if (fit != PillarFit::Fits) t_.no_pillar.push_back(s.p);
                 continue;
             }
             const auto placed_top = place_tip_top(model_, s.p, p_);
@@ -491,6 +490,9 @@ private:
                     restart_alone(v);
                 continue;
             }
+            // A leaf that went down alone and still ends here: a steep face it could have stood on
+            // from where it hangs (the pocket its bends led it into may offer none).
+            if (t_.nodes[v].kind == NodeKind::Leaf && v != id && stand_on_steep_face(v)) continue;
             if (t_.nodes[v].kind == NodeKind::Leaf) ++lost;
             t_.nodes[v].kind = NodeKind::Dropped;
         }

@@ -102,7 +102,8 @@ struct SupportTree {
     std::vector<Node> nodes;
     std::vector<Strut> struts;
     std::vector<Pillar> pillars;
-    std::vector<Vec3> no_pillar;  // samples too low for a tree under which no pillar fits (hang_leaves)
+    std::vector<Vec3> no_pillar;  // samples too low for a tree that got no pillar (hang_leaves): none fits
+                                  // (stats.dropped), or the slot is too low for one (stats.bridged)
     TreeStats stats;
     GrowOptions grown_with;  // how the sweep grew it
     // The estimate of the tree as size_struts sizes it, where the one who chose the tree computed it

@@ -20,9 +20,6 @@ struct TreeTuning {
     int fan_directions = 8;
 
     // ---- nudges off the model's surface
-    // A ray from an overhang sample starts this far below it, so it does not report the sample's
-    // own face (far below any layer, far above double rounding at model scale).
-    double ray_start_below_sample = 1e-4;
     // "Material right below a sample" (overlapping shells) is probed this far under it: a tenth
     // of the thinnest wall that matters, still clear of the face's own rounding.
     double inside_probe_below_sample = 0.01;

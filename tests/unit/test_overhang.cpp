@@ -1,7 +1,9 @@
 // overhang/: which faces need support, the global sampling lattice, edge and point overhangs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <map>
 #include <set>
 
@@ -626,6 +628,62 @@ TEST(TopUp, ATipMovedAsideGetsTheGapItLeavesFilled) {
     }
     for (const auto& x : dense_overhang_points(plate.mesh, plate.o, true))
         EXPECT_TRUE(covered_by(all, x, plate.o)) << "uncovered at " << x.x << ", " << x.y;
+}
+
+TEST(TopUp, ASampleWhoseSupportDoesNotFitMovesWithinReachToWhereOneDoes) {
+    // A tip in the middle of the plate given up (its sample held nothing up): the points around
+    // it are beyond the full reach of every other tip. No support fits within 0.5 mm of where the
+    // plain top-up puts its samples (a knife edge there, as on the propeller's blade at 80 mm,
+    // where the sample on the uncovered point took no tip). Each sample moves to the nearest point
+    // of the overhang whose support fits and still covers the point it was for; every point is
+    // covered again.
+    Plate plate;
+    auto gone = std::find_if(plate.tips.begin(), plate.tips.end(), [](const Vec3& t) {
+        return std::abs(t.x - 9) < 0.8 && std::abs(t.y - 9) < 0.8;
+    });
+    ASSERT_NE(gone, plate.tips.end());
+    plate.tips.erase(gone);
+    const auto first = top_up_samples(plate.mesh, plate.o, nullptr, plate.sampled, plate.tips);
+    ASSERT_FALSE(first.empty());
+    auto refused = [&](const Vec3& x) {
+        return std::any_of(first.begin(), first.end(), [&](const Sample& s) { return horizontal_distance(s.p, x) < 0.5; });
+    };
+    int asked = 0;
+    const SupportAt support_at = [&](const Vec3& x) -> std::optional<Vec3> {
+        ++asked;
+        if (refused(x)) return std::nullopt;
+        return x;  // the tip's top straight under the sample
+    };
+    const auto extra = top_up_samples(plate.mesh, plate.o, nullptr, plate.sampled, plate.tips, support_at);
+    ASSERT_FALSE(extra.empty());
+    EXPECT_GT(asked, static_cast<int>(extra.size())) << "the samples' own places were asked first";
+    // What holds the plate up: the tips, and the samples whose support fits (a sample left bare
+    // where one fits near covers only what the others hold at the full reach).
+    std::vector<Vec3> held = plate.tips;
+    for (const auto& s : extra)
+        if (!refused(s.p)) held.push_back(s.p);
+    EXPECT_GT(held.size(), plate.tips.size()) << "no sample moved to where its support fits";
+    for (const auto& x : dense_overhang_points(plate.mesh, plate.o))
+        EXPECT_TRUE(covered_by(held, x, plate.o)) << "beyond reach at " << x.x << ", " << x.y;
+    // Where every support fits, the samples are the plain top-up's.
+    const SupportAt fits_everywhere = [](const Vec3& x) -> std::optional<Vec3> { return x; };
+    const auto same = top_up_samples(plate.mesh, plate.o, nullptr, plate.sampled, plate.tips, fits_everywhere);
+    ASSERT_EQ(same.size(), first.size());
+    for (size_t i = 0; i < same.size(); ++i) EXPECT_EQ(same[i].p, first[i].p);
+}
+
+// The air below a rim where a wall rises from it, the wall's lowest corner a hair below the rim
+// (float STL: the bearing block's counterbore at 60 mm, 1e-4 mm): a ray started just under the
+// rim would run inside the wall's plane and meet it at once, as if the rim rested on material.
+TEST(AirBelow, AWallRisingFromTheRimIsNotTheFloor) {
+    Mesh m;
+    m.vertices = {{-1, 0, 20}, {1, 0, 20}, {0, 0, 10 - 5e-4},  // the wall, in the plane y = 0
+                  {-5, -5, 2}, {5, -5, 2}, {0, 5, 2}};        // the floor, facing up
+    m.faces = {{0, 1, 2}, {3, 4, 5}};
+    ModelQuery q(m);
+    const Vec3 rim{0, 0, 10};
+    EXPECT_NEAR(air_below(q, rim), 8, 1e-9);
+    EXPECT_FALSE(rests_on_material(q, rim, 0.6));
 }
 
 // Cover takes the rise once; its answer is covers', and within_reach is hypot's <= (points on and

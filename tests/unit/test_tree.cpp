@@ -461,6 +461,25 @@ TEST(HangLeaves, ASampleUnderWhichNoPillarFitsIsListed) {
     EXPECT_EQ(more.no_pillar, hung.no_pillar);
 }
 
+// A sample in a slot too low for a pillar between its gaps is bridged (FitPillar's groove): it
+// holds nothing up either (`check` lets the print bridge only where the overhang hangs no more
+// than touching_space above what is below; here 1 mm), so the hung tree lists it with the samples
+// no pillar fits under (propeller at 80 mm in its auto pose: a bridged sample on a blade counted
+// as holding its neighbours, 1.89 mm gap).
+TEST(HangLeaves, ASampleInASlotTooLowForAPillarIsListed) {
+    Params p;
+    Mesh m = cs::test::box({-5, -5, 0}, {-0.05, 5, 0.45});
+    append(m, cs::test::box({0.05, -5, 0}, {5, 5, 0.45}));
+    append(m, cs::test::box({-5, -5, 1.0}, {5, 5, 2}));
+    ModelQuery q(m);
+    const Vec3 in_slot{0, 0, 1.0};
+    const SupportTree hung = hang_leaves(q, {{in_slot, SampleKind::Face}}, p);
+    EXPECT_EQ(hung.stats.bridged, 1u);
+    EXPECT_TRUE(hung.pillars.empty());
+    ASSERT_EQ(hung.no_pillar.size(), 1u);
+    EXPECT_EQ(hung.no_pillar[0], in_slot);
+}
+
 // The coverage top-up hangs only its new samples' leaves into the hung tree: node for node,
 // pillar for pillar and count for count what hanging every sample again gives (the tree grown from
 // it, and so every output, is the same). Every other sample is held back and added after.
