@@ -3,6 +3,7 @@
 
 usage: bench/fit_time_model.py TUNING.json [CHECK.json ...]
        bench/fit_time_model.py --walls TUNING.json [CHECK.json ...]
+       bench/fit_time_model.py --rest TUNING.json [CHECK.json ...]
 
 TUNING.json is a hand-off run of the tuning set (bench/handoff.py --tuning): for every model it holds
 what the generator counted for its tree (report: slicer_estimate island_layers, outline_mm, travel_mm)
@@ -14,6 +15,10 @@ and the seconds the supports added in each slicer's G-code (route minus the bare
 by least squares on the relative error (every model weighs the same), prints the three prices and,
 for TUNING.json and each CHECK.json (e.g. the validation run, never fitted on), the estimate over the
 G-code per model with its median and worst.
+
+With --rest the tree's prices are fitted to the G-code's seconds less those it spends on our walls
+(the route's "walls" of handoff.py, slicers/wall_time.py): without it, on a walled model the tree's
+terms also pay for the walls.
 
 With --walls it fits the price of a wall island instead (SlicerRoute::wall_island_s): per route, the
 seconds the G-code spends on our walls (slicers/wall_time.py, recorded by handoff.py as the route's
@@ -33,13 +38,16 @@ ROUTES = ("cura_ours_mesh", "prusa_ours_3mf")
 TERMS = ("island_layers", "outline_mm", "travel_mm")
 
 
-def rows(path, route):
+def rows(path, route, rest=False):
+    """(name, the tree's terms, G-code seconds) per model; with rest, the seconds the G-code spends on
+    the walls (slicers/wall_time.py, the route's "walls") are taken out: the tree's own seconds."""
     out = []
     for name, m in json.load(open(path))["models"].items():
         est = m.get("gen", {}).get("tree", {}).get("slicer_estimate")
         d = m.get("derived", {}).get(route)
         if est and d and d.get("support_min"):
-            out.append((name, [est[t] for t in TERMS], d["support_min"] * 60))
+            walls = (m.get("slices", {}).get(route) or {}).get("walls") if rest else None
+            out.append((name, [est[t] for t in TERMS], d["support_min"] * 60 - (walls["wall_s"] if walls else 0)))
     return out
 
 
@@ -70,7 +78,8 @@ def report(label, data, prices):
     if not ratios:
         return
     rs = [r for _, r in ratios]
-    worst = max(ratios, key=lambda nr: abs(math.log(nr[1])))
+    # a fit with a negative price can estimate below zero: that is the worst
+    worst = max(ratios, key=lambda nr: abs(math.log(nr[1])) if nr[1] > 0 else math.inf)
     print(f"  {label}: estimate / G-code median {statistics.median(rs):.2f}, worst {worst[1]:.2f} ({worst[0]})")
     print("    " + ", ".join(f"{n} {r:.2f}" for n, r in ratios))
 
@@ -108,8 +117,11 @@ def fit_walls(paths):
 def main(paths):
     if paths and paths[0] == "--walls":
         return fit_walls(paths[1:])
+    rest = bool(paths) and paths[0] == "--rest"
+    if rest:
+        paths = paths[1:]
     for route in ROUTES:
-        data = rows(paths[0], route)
+        data = rows(paths[0], route, rest)
         if len(data) < len(TERMS):
             print(f"{route}: {len(data)} models, too few to fit")
             continue
@@ -118,7 +130,7 @@ def main(paths):
               f"hop_s_per_mm {prices[2]:.4f}")
         report(paths[0], data, prices)
         for path in paths[1:]:
-            report(path, rows(path, route), prices)
+            report(path, rows(path, route, rest), prices)
 
 
 if __name__ == "__main__":

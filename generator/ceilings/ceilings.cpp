@@ -803,8 +803,15 @@ public:
             return vertex[v];
         };
         for (const auto& f : m.faces) {
+            // The face's box (Box3::add's, by comparisons: its std::fmin and std::fmax are library
+            // calls, six a corner, for every face of the model; they differ only in which zero
+            // they keep of -0 and +0, which compare and index the same here, and both skip a NaN).
             Box3 box;
-            for (auto v : f) box.add(m.vertices[v]);
+            for (auto v : f) {
+                const Vec3& p = m.vertices[v];
+                box.min = {p.x < box.min.x ? p.x : box.min.x, p.y < box.min.y ? p.y : box.min.y, p.z < box.min.z ? p.z : box.min.z};
+                box.max = {p.x > box.max.x ? p.x : box.max.x, p.y > box.max.y ? p.y : box.max.y, p.z > box.max.z ? p.z : box.max.z};
+            }
             if (!overlaps(box, near)) continue;
             const Triangle t{weld(f[0]), weld(f[1]), weld(f[2])};
             if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0]) continue;  // welded away

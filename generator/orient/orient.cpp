@@ -105,8 +105,12 @@ std::vector<std::pair<Vec3, std::string>> candidate_directions(const Mesh& mesh)
         const double cos_near = std::cos(deg_to_rad(10));
         std::vector<std::pair<double, Vec3>> counted;
         for (const auto& f : facets) {
+            // Only the near facets are added (few of them): adding 0 for the others would keep
+            // the same sum (areas are not negative) at the cost of an addition each, one after
+            // the other.
             double w = 0;
-            for (const auto& g : facets) w += dot(f.normal, g.normal) > cos_near ? g.area : 0;
+            for (const auto& g : facets)
+                if (dot(f.normal, g.normal) > cos_near) w += g.area;
             counted.push_back({w, f.normal});
         }
         for (auto& d : merge_directions(counted, 10.0, 48)) dirs.push_back({d, "hull"});

@@ -290,11 +290,13 @@ bool needs_support(const Vec3& n, double critical_angle_deg) { return n.z < over
 std::vector<char> classify_faces(const Mesh& m, const OverhangOptions& o) {
     std::vector<char> out(m.faces.size(), 0);
     const double on_bed = o.bed_height * 0.5;
+    // needs_support's limit, its sine taken once (per face it was a large part of this pass).
+    const double nz_limit = overhang_normal_z_limit(o.critical_angle);
     for (size_t i = 0; i < m.faces.size(); ++i) {
         const auto& f = m.faces[i];
         double zmax = std::max({m.vertices[f[0]].z, m.vertices[f[1]].z, m.vertices[f[2]].z});
         if (zmax <= on_bed) continue;
-        out[i] = needs_support(normalized(face_normal_unnormalized(m, f)), o.critical_angle);
+        out[i] = normalized(face_normal_unnormalized(m, f)).z < nz_limit;
     }
     return out;
 }

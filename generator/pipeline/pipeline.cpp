@@ -95,7 +95,8 @@ double scale_to_mm(Mesh& mesh, const Job& job, std::vector<std::string>& warning
 // gets its own index afterwards: what is written depends on the turning only through the choice.
 constexpr std::size_t kIndexOnceTriangles = 200'000;
 
-Orientation orient_by_support(const Mesh& scaled, const Params& p, const std::string& orient) {
+// `edges`: edge_uses(scaled) (every pose has the model's faces).
+Orientation orient_by_support(const Mesh& scaled, const Params& p, const std::string& orient, const EdgeUses& edges) {
     Params coarse = p;
     coarse.sampling_distance = 2 * p.sampling_distance;
     OverhangOptions coarse_oo = overhang_options(coarse);
@@ -103,8 +104,6 @@ Orientation orient_by_support(const Mesh& scaled, const Params& p, const std::st
     std::unique_ptr<const ModelQuery> as_given;
     if (scaled.faces.size() > kIndexOnceTriangles && parse_orient(orient).mode == OrientMode::automatic)
         as_given = std::make_unique<const ModelQuery>(scaled);
-    // Every pose has the model's faces: their edges sorted once.
-    const EdgeUses edges = parse_orient(orient).mode == OrientMode::automatic ? edge_uses(scaled) : EdgeUses{};
     // A user's support blockers are in the chosen pose's coordinates: no pose is judged with them.
     return choose_orientation(scaled, p, orient, [&](const Mesh& rotated, const Rotation& rotation) {
         Placement pl;
@@ -610,7 +609,13 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     Mesh scaled = std::move(repaired);
     const double scale = scale_to_mm(scaled, job, r.warnings);
     const OverhangOptions oo = overhang_options(p);
-    r.orientation = sw.time("orient", progress, [&] { return orient_by_support(scaled, p, job.orient); });
+    // The model's edges, sorted once: they depend on its faces alone, which every pose the search
+    // judges and the chosen pose's placed model keep (place_on_bed at scale 1 moves vertices only).
+    EdgeUses edges;
+    r.orientation = sw.time("orient", progress, [&] {
+        edges = edge_uses(scaled);
+        return orient_by_support(scaled, p, job.orient, edges);
+    });
     r.model = place_on_bed(scaled, 1.0, r.orientation.rotation.m, r.placement);
     r.placement.scale = scale;
     scaled = Mesh();
@@ -619,7 +624,8 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     // it takes seconds and most of a gigabyte).
     auto query = sw.time("model index", progress, [&] { return std::make_unique<ModelQuery>(r.model); });
     // With the index, points resting on material below need no sample (as `check` judges them).
-    r.samples = sw.time("overhangs", progress, [&] { return sample_overhangs(r.model, oo, query.get()); });
+    r.samples = sw.time("overhangs", progress, [&] { return sample_overhangs(r.model, oo, query.get(), &edges); });
+    edges = EdgeUses();  // (a 5M-triangle scan's take 240 MB)
     if (!job.edits.empty()) {
         size_t before = r.samples.samples.size();
         r.samples.samples = edited_samples(*query, std::move(r.samples.samples), job.edits, p);
