@@ -242,19 +242,29 @@ struct Frame {
 };
 
 // The floor and top of a wall at one station: the top a gap under the lowest ceiling over its
-// width and side clearance, all of it this region's overhang (near a sample of it); the floor the
-// bed, or a gap over a level face of the model the same under all of it (the hybrid's:
-// hybrid_height under the top, with room below every probe: hybrid_floor). Nothing where any part
-// is not so.
+// width (its middle and both faces), and no higher than the ceiling a side clearance beside it
+// (and beyond it along the row, where it may end), all of it this region's overhang (near a
+// sample of it); the floor the bed, or a gap over a level face of the model the same under all of
+// it (the hybrid's: hybrid_height under the top, with room below every probe: hybrid_floor).
+// Nothing where any part is not so. Under a ceiling sloping across the wall the gap alone keeps the
+// side clearance at the top (an overhang rises at most 1 : tan(critical angle) < gap : clearance
+// over it), so the top is not lowered by the slope over the clearance: the lower face's edge of a
+// long top stays a contact along its length under a 35 degree slope (a twisted blade's underside).
+// The hybrid's tops stay a gap under the lowest ceiling over the clearance too: its regions are
+// priced with the tree under their feet, and with the raised tops the wheel at 80 mm lost its
+// hybrid (estimate 26.5 -> 31.2 min on Cura) and rocker_arm got a dearer one (12.7 -> 13.3).
 std::optional<std::pair<double, double>> station_of(const ModelQuery& q, const XyGrid<std::size_t>& region,
                                                     const std::vector<Sample>& samples, const Vec3& c, const Vec3& across,
                                                     const Params& p, double overhang_nz, double thickness, bool wide_ref = false) {
     const double half = 0.5 * thickness + tip_side_clearance(p), rise = same_surface_rise(p, p.sampling_distance);
     const Vec3 along{across.y, -across.x, 0};  // a wall may end at this station: clearance beyond it too
     const double side = tip_side_clearance(p);
-    double lowest = INFINITY, floor_lo = INFINITY, floor_hi = -INFINITY;
-    for (const Vec3 offset : {Vec3{}, across * -half, across * half, along * side, along * -side}) {
-        const Vec3 x = c + offset;
+    const bool walls = p.hybrid_height <= 0;
+    const double edge = 0.5 * thickness;
+    double lowest = INFINITY, floor_lo = INFINITY, floor_hi = -INFINITY, beside = INFINITY;
+    const std::array<Vec3, 7> offsets{Vec3{}, across * -half, across * half, along * side, along * -side, across * -edge, across * edge};
+    for (std::size_t k = 0; k < (walls ? 7u : 5u); ++k) {
+        const Vec3 x = c + offsets[k];
         std::optional<double> z_ref;
         // The stretch of surface of a sample within a sampling distance; else within the reach
         // by which regions join samples (a narrow strip sampled along its edge only).
@@ -271,10 +281,11 @@ std::optional<std::pair<double, double>> station_of(const ModelQuery& q, const X
         if (!z) return std::nullopt;
         auto floor = floor_under(q, {x.x, x.y, *z}, p);
         if (!floor) return std::nullopt;
-        lowest = std::min(lowest, *z);
+        const bool over_width = k == 0 || k >= 5 || !walls;
+        (over_width ? lowest : beside) = std::min(over_width ? lowest : beside, *z);
         floor_lo = std::min(floor_lo, *floor), floor_hi = std::max(floor_hi, *floor);
     }
-    const double top = lowest - p.gap;
+    const double top = std::min(lowest - p.gap, beside);
     if (p.hybrid_height > 0) return std::pair{top - p.hybrid_height, top};  // the foot follows the top
     if (floor_hi - floor_lo > p.layer_height) return std::nullopt;
     if (top - floor_hi < touching_space(p)) return std::nullopt;
@@ -644,6 +655,18 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
 // over it, until it is as long as it is thick, while its floor stays flat (a piece may not hang over a
 // lower floor). One that cannot grow so long is not built: its samples stay with the tree
 // (the walls' contacts are found on the pieces built).
+// `check` finds a wall's top long (a contact along its length, README "check") from two coverage
+// reaches and three times its thickness; within kUnsureTop of that bound it may be judged either
+// way (`check`'s lattice reach is coverage_reach rounded up).
+double long_top(const Params& p, double thickness) { return std::max(2 * coverage_reach(p.sampling_distance), 3 * thickness); }
+constexpr double kUnsureTop = 1.02;
+
+// A piece shorter than a long top holds the ceiling at its middle only (wall_contacts): a faceted
+// or twisted ceiling (a blade exported as facets) wavers along a level row by about half a layer
+// every few millimetres, which cut its rows into pieces just short of a long top. So a piece goes
+// on past where its ceiling steps by half a layer, while its top stays within a layer (each of its
+// points then within a gap and a layer of the ceiling: a contact), until it is surely long.
+
 std::vector<CeilingWall> flat_pieces(const Run& r, const Params& p) {
     std::vector<CeilingWall> out;
     const double flat = 0.5 * p.layer_height;
@@ -651,23 +674,40 @@ std::vector<CeilingWall> flat_pieces(const Run& r, const Params& p) {
     auto thickest = [&](std::size_t a, std::size_t b) {
         return *std::max_element(r.thickness.begin() + a, r.thickness.begin() + b + 1);
     };
-    std::size_t i = 0;
-    while (i + 1 < r.top.size()) {
+    struct Piece {
+        std::size_t end;
+        double top, floor;
+    };
+    // The piece from station i on: flat within half a layer (or, `to_long`, within a layer while
+    // shorter than a long top), and on until it is as long as it is thick.
+    auto piece_from = [&](std::size_t i, bool to_long) {
         double top_lo = std::min(r.top[i].z, r.top[i + 1].z), top_hi = std::max(r.top[i].z, r.top[i + 1].z);
         double fl_lo = std::min(r.floor[i], r.floor[i + 1]), fl_hi = std::max(r.floor[i], r.floor[i + 1]);
         std::size_t k = i + 1;
         while (k + 1 < r.top.size()) {
             const double t = r.top[k + 1].z, fl = r.floor[k + 1];
             const bool floor_flat = std::max(fl_hi, fl) - std::min(fl_lo, fl) <= flat;
-            const bool top_flat = std::max(top_hi, t) - std::min(top_lo, t) <= flat;
+            const double top_range = std::max(top_hi, t) - std::min(top_lo, t);
             const bool too_short = length(i, k) < thickest(i, k);
-            if (!floor_flat || (!top_flat && !too_short)) break;
+            const bool short_top = to_long && length(i, k) < kUnsureTop * long_top(p, thickest(i, k)) && top_range <= p.layer_height;
+            if (!floor_flat || (top_range > flat && !too_short && !short_top)) break;
             top_lo = std::min(top_lo, t), top_hi = std::max(top_hi, t), fl_lo = std::min(fl_lo, fl), fl_hi = std::max(fl_hi, fl);
             ++k;
         }
+        return Piece{k, top_lo, fl_hi};
+    };
+    std::size_t i = 0;
+    while (i + 1 < r.top.size()) {
+        Piece piece = piece_from(i, false);
+        // Short: longer within a layer where that makes it a long top (else as it was: a staircase
+        // down a slope keeps its short pieces, each held at its middle, the middles close).
+        if (length(i, piece.end) < kUnsureTop * long_top(p, thickest(i, piece.end)))
+            if (const Piece longer = piece_from(i, true); length(i, longer.end) >= kUnsureTop * long_top(p, thickest(i, longer.end)))
+                piece = longer;
+        const std::size_t k = piece.end;
         const double t = thickest(i, k);
         if (length(i, k) >= t)
-            out.push_back({{r.top[i].x, r.top[i].y, 0}, {r.top[k].x, r.top[k].y, 0}, fl_hi, top_lo, r.join, t});
+            out.push_back({{r.top[i].x, r.top[i].y, 0}, {r.top[k].x, r.top[k].y, 0}, piece.floor, piece.top, r.join, t});
         i = k;
     }
     return out;
@@ -704,7 +744,6 @@ struct Contacts {
     // ceiling sloping across them).
     double length = 0, narrow = 0;
 };
-constexpr double kUnsureTop = 1.02;
 
 Contacts wall_contacts(const ModelQuery& q, const std::vector<CeilingWall>& walls, const Params& p) {
     Contacts out;
@@ -716,7 +755,7 @@ Contacts wall_contacts(const ModelQuery& q, const std::vector<CeilingWall>& wall
     for (const auto& w : walls) {
         const Vec3 a{w.from.x, w.from.y, w.top}, b{w.to.x, w.to.y, w.top};
         const double length = horizontal_distance(a, b);
-        const bool is_long = length >= kUnsureTop * std::max(two_reaches, 3 * w.thickness);
+        const bool is_long = length >= kUnsureTop * long_top(p, w.thickness);
         const Vec3 d = (b - a) * (1.0 / length), across = Vec3{-d.y, d.x, 0} * (0.5 * w.thickness);
         out.length += length;
         if (!is_long) {
@@ -1237,9 +1276,10 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         XyGrid<std::size_t> grid(p.sampling_distance);
         for (std::size_t i : r.samples) grid.insert(samples[i].p, i);
         // Rows along x or y (rows_along_x); where the ceiling is level along a direction between
-        // them (level_direction), also along that, keeping the rows that leave fewer samples (the
-        // axis' of equals: a region whose rims run along the axes, a tilted rectangle, leaves
-        // triangles at the rows' ends that no row reaches and rows no join fits between).
+        // them (level_direction), also along that, keeping the rows that leave fewer samples (a
+        // region whose rims run along the axes, a tilted rectangle, leaves triangles at the rows'
+        // ends that no row reaches and rows no join fits between), of equals the fewer pieces
+        // (rows along x or y cross a blade's underside as a staircase).
         const Frame axis = Frame::along_axis(rows_along_x(r, grid, samples, p));
         std::vector<RowPlan> plans;
         if (auto d = level_direction(q, r, samples, p, axis)) plans.push_back(plan_rows(q, r, grid, Frame::along(*d), samples, p, overhang_nz));
@@ -1277,7 +1317,9 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
                 auto l = lay(plan, span, nullptr);
                 if (l && (!mine || l->left.size() < mine->left.size())) mine = std::move(l);
             }
-            if (mine && (!best || mine->left.size() < best->left.size())) best = std::move(mine), chosen = &plan;
+            if (mine && (!best || mine->left.size() < best->left.size() ||
+                         (mine->left.size() == best->left.size() && mine->pieces.size() < best->pieces.size())))
+                best = std::move(mine), chosen = &plan;
         }
         if (!best) continue;
         std::vector<Sample> own;

@@ -605,3 +605,43 @@ TEST(Ceilings, AStaircaseRowIsOneLineAndAMeanderOneIslandALayer) {
         EXPECT_GT(apart, 1.3 * w.line_seconds);
     }
 }
+
+// A twisted plate (a blade): 40 mm long along x, 12 mm wide, 1.6 mm thick, its middle line 8 mm
+// over the bed, pitched 35 degrees at its root (x = 0) to 20 at its tip about that line, standing
+// on a post at its root; triangulated on a 1 x 1 mm grid (faceted, as a CAD export of a twisted
+// blade is). Its underside is level nearly along its length.
+Mesh twisted_plate() {
+    std::vector<double> xs{-4}, ys;
+    for (int i = 0; i <= 40; ++i) xs.push_back(i);
+    for (int j = -6; j <= 6; ++j) ys.push_back(j);
+    test::CellGrid g(xs, ys, {0, 8, 9.6});
+    g.fill({-4, -6, 0}, {0, 6, 9.6});
+    g.fill({0, -6, 8}, {40, 6, 9.6});
+    Mesh m = g.mesh();
+    for (auto& v : m.vertices) {
+        if (v.z < 8 - 1e-9) continue;
+        const double pitch = deg_to_rad(35 - 15 * std::clamp(v.x, 0.0, 40.0) / 40);
+        v.z += v.y * std::tan(pitch);
+    }
+    return m;
+}
+
+// The twisted plate turned 60 degrees: its underside slopes 20-35 degrees across its length and
+// wavers along it by half a layer every few millimetres (its facets). Rows run along it (not a
+// staircase along x or y), in pieces long enough for `check` to hold the ceiling along their
+// length (a top stays a gap under the ceiling over the wall's own width, and a piece goes on
+// past a half-layer step until it is long), and the walls carry nearly every sample. On the code
+// before 2026-11-26: 221 rows of short pieces along y, none long, 68 of 102 samples carried.
+TEST(Ceilings, ATwistedBladesUndersideGetsLongRowsAlongIt) {
+    Walled w = walled(turned(twisted_plate(), 60));
+    ASSERT_FALSE(w.ceilings.walls.empty());
+    const auto [all, along] = rows_along(w.ceilings.walls, 60, 5);
+    EXPECT_GT(along, 0.9 * all);
+    std::size_t rows = 0, long_rows = 0;
+    for (const CeilingWall& c : w.ceilings.walls)
+        if (!c.join) ++rows, long_rows += horizontal_distance(c.from, c.to) >= 1.02 * 2 * coverage_reach(w.p.sampling_distance);
+    EXPECT_LT(rows, 60u);
+    EXPECT_GT(long_rows, 0.8 * rows);
+    EXPECT_GE(w.ceilings.covered, 0.95 * w.samples.samples.size());
+    expect_walls_hold_what_they_take(w, "twisted plate at 60 degrees");
+}
