@@ -121,13 +121,21 @@ Ceilings support_ceilings(const ModelQuery& model, const std::vector<Sample>& sa
 // above; `finish` then makes the region's pieces what is built (support_ceilings keeps them; the
 // hybrid cuts them at its feet); the region is priced with `tree_count(samples, pieces)` (the
 // tree for some samples, with a tip under the foot of each of `pieces` where they stand on the
-// tree; called with no pieces for the region's own tree).
+// tree; called with no pieces for the region's own tree). Where the pieces stand on the tree
+// (p.hybrid_height > 0), the regions' choices are then weighed in the whole (hybrid.hpp, choice).
 using PiecesRule = std::function<std::vector<CeilingWall>(std::vector<CeilingWall>)>;
 using PiecesTreeCounter = std::function<TreeCount(const std::vector<Sample>&, const std::vector<CeilingWall>&)>;
 Ceilings lay_out_ceilings(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
                           const PiecesRule& finish, const PiecesTreeCounter& tree_count,
                           const std::vector<Box3>& support_blockers, double most_left, const TipAt& tip_at = {},
                           const std::vector<char>& stay = {});
+
+// What `pieces` carry of `samples` (as lay_out_ceilings took them, `stay` per sample; a sample
+// that stays is never carried), judged as lay_out_ceilings judges it: `walls` the pieces, `rest`
+// and `stay` the samples they leave (in order), `covered` how many they carry. Example: the hybrid
+// without the pieces the tree could not carry (ceilings/hybrid.hpp, without_feet).
+Ceilings carried_by(const ModelQuery& model, const std::vector<Sample>& samples, const std::vector<char>& stay,
+                    std::vector<CeilingWall> pieces, const Params& p);
 
 // Are walls laid out at all with these parameters: a span, rows within reach of each other, a tree?
 bool ceilings_laid_out(const Params& p);

@@ -62,6 +62,19 @@ std::vector<Vec3> feet_of(const std::vector<CeilingWall>& pieces) {
     return feet;
 }
 
+Ceilings without_feet(const ModelQuery& q, const std::vector<Sample>& samples, const std::vector<char>& stay,
+                      const Ceilings& h, const std::vector<Vec3>& lost, const Params& p) {
+    std::vector<CeilingWall> kept;
+    for (const CeilingWall& w : h.walls) {
+        const Vec3 foot = feet_of({w}).front();
+        if (std::none_of(lost.begin(), lost.end(), [&](const Vec3& f) { return distance(f, foot) < 1e-9; })) kept.push_back(w);
+    }
+    Ceilings out = carried_by(q, samples, stay, std::move(kept), p);
+    out.feet = feet_of(out.walls);
+    out.regions = out.walls.empty() ? 0 : h.regions;
+    return out;
+}
+
 Ceilings support_hybrid(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
                         const FeetTreeCounter& tree_count, const std::vector<Box3>& blockers, const TipAt& tip_at,
                         const std::vector<char>& stay) {

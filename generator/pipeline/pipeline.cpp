@@ -185,14 +185,17 @@ FeetTreeCounter feet_tree_counter(const ModelQuery& q, const Params& p, const st
 namespace {
 
 // The hybrid (ceilings/hybrid.hpp) under what the walls left, kept clear of the walls (their
-// boxes, a side clearance around them, join the user's blockers): the walls and the hybrid's
-// pieces together, the samples neither carries, and the hybrid's feet.
-Ceilings with_hybrid(const ModelQuery& q, const Ceilings& walls, const Params& p, const std::vector<Box3>& user_blockers,
-                     const FeetTreeCounter& tree_count, const TipAt& tip_at) {
-    if (p.hybrid_height <= 0) return walls;
+// boxes, a side clearance around them, join the user's blockers): its pieces, the samples of
+// `walls.rest` they leave, and their feet.
+Ceilings hybrid_under(const ModelQuery& q, const Ceilings& walls, const Params& p, const std::vector<Box3>& user_blockers,
+                      const FeetTreeCounter& tree_count, const TipAt& tip_at) {
     std::vector<Box3> blockers = user_blockers;
     for (const CeilingWall& w : walls.walls) blockers.push_back(wall_box(w, tip_side_clearance(p)));
-    Ceilings hybrid = support_hybrid(q, walls.rest, p, tree_count, blockers, tip_at, walls.stay);
+    return support_hybrid(q, walls.rest, p, tree_count, blockers, tip_at, walls.stay);
+}
+
+// The walls and the hybrid's pieces together, the samples neither carries, and the hybrid's feet.
+Ceilings joined(const Ceilings& walls, Ceilings hybrid) {
     if (hybrid.walls.empty()) return walls;
     Ceilings out = walls;
     out.walls.insert(out.walls.end(), hybrid.walls.begin(), hybrid.walls.end());
@@ -202,6 +205,17 @@ Ceilings with_hybrid(const ModelQuery& q, const Ceilings& walls, const Params& p
     out.tree_cura_s += hybrid.tree_cura_s, out.tree_prusa_s += hybrid.tree_prusa_s;
     out.walls_cura_s += hybrid.walls_cura_s, out.walls_prusa_s += hybrid.walls_prusa_s;
     return out;
+}
+
+// Where the tree loses feet of the hybrid, their pieces go (without_feet) and the tree grows again,
+// this many times at most before the hybrid goes whole.
+constexpr int kFootRounds = 3;
+
+// The seconds a grown tree and the ceilings' pieces add, on the Cura and PrusaSlicer routes (as
+// finish_supports estimates them).
+std::pair<double, double> whole_seconds(const SizedTree& t, const Ceilings& c, const Params& p) {
+    const SlicerCost cost = t.tree.slicer_cost ? *t.tree.slicer_cost : estimate_slicer_cost(t.tree, mean_strut_widths(t), p);
+    return {cost.cura_seconds + walls_seconds(kCuraRoute, c.walls, p), cost.prusa_seconds + walls_seconds(kPrusaRoute, c.walls, p)};
 }
 
 }  // namespace
@@ -646,7 +660,7 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     }
     // Walls under ceilings low over the bed take the samples they carry; under ceilings higher up
     // the hybrid's short walls (on the tree) take theirs; the tree grows from the rest.
-    Ceilings walls_only;
+    Ceilings walls_only, hybrid;
     Ceilings ceilings = sw.time("ceilings", progress, [&] {
         // One counter for both: it remembers the trees it grew (a region the walls priced is often
         // the hybrid's too).
@@ -655,7 +669,9 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         walls_only = support_ceilings(*query, r.samples.samples, p,
                                       [&count](const std::vector<Sample>& s) { return count(s, {}); }, blockers,
                                       kMostLeftToPrice, tip_at);
-        return with_hybrid(*query, walls_only, p, blockers, count, tip_at);
+        if (p.hybrid_height <= 0) return walls_only;
+        hybrid = hybrid_under(*query, walls_only, p, blockers, count, tip_at);
+        return joined(walls_only, hybrid);
     });
     auto leaves_of = [&](const Ceilings& c) {
         return c.walls.empty() ? SupportTree{} : hang_feet(hang_leaves(*query, c.rest, p, blockers), c.feet, p);
@@ -686,14 +702,45 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         *leaves = std::move(more_leaves);
         return regrown;
     };
-    SizedTree grown = sw.time("tree", progress, [&] {
-        SizedTree t = grow();
-        if (feet_carried(t.tree, ceilings.feet)) return t;
-        // The tree lost a foot of the hybrid (a wall on nothing): grown again without the hybrid.
-        ceilings = std::move(walls_only);
+    auto grow_with = [&](Ceilings c) {
+        ceilings = std::move(c);
         hung_rest = leaves_of(ceilings);
         leaves = ceilings.walls.empty() ? &hung : &hung_rest;
         return grow();
+    };
+    SizedTree grown = sw.time("tree", progress, [&] {
+        SizedTree t = grow();
+        if (feet_carried(t.tree, ceilings.feet)) return t;
+        // The tree lost feet of the hybrid (walls on nothing): their pieces go, the samples only
+        // they carried go back to the tree, and it grows again (it may lose others).
+        const OverhangSamples samples_before = r.samples;
+        const SupportTree hung_before = hung;
+        struct Kept {
+            SizedTree tree;
+            Ceilings ceilings;
+            OverhangSamples samples;
+            SupportTree hung;
+        };
+        std::optional<Kept> fewer;
+        for (int round = 0; round < kFootRounds; ++round) {
+            hybrid = without_feet(*query, walls_only.rest, walls_only.stay, hybrid, lost_feet(t.tree, hybrid.feet), p);
+            if (hybrid.walls.empty()) break;
+            t = grow_with(joined(walls_only, hybrid));
+            if (feet_carried(t.tree, hybrid.feet)) {
+                fewer = Kept{std::move(t), ceilings, r.samples, hung};
+                break;
+            }
+        }
+        // Without the hybrid, from where the first tree left the samples; the rest of the hybrid
+        // only where the time model prefers it on both routes (either slicer may print it).
+        r.samples = samples_before, hung = hung_before;
+        SizedTree plain = grow_with(walls_only);
+        if (!fewer) return plain;
+        const auto [with_cura, with_prusa] = whole_seconds(fewer->tree, fewer->ceilings, p);
+        const auto [plain_cura, plain_prusa] = whole_seconds(plain, ceilings, p);
+        if (!(with_cura < plain_cura && with_prusa < plain_prusa)) return plain;
+        ceilings = std::move(fewer->ceilings), r.samples = std::move(fewer->samples), hung = std::move(fewer->hung);
+        return std::move(fewer->tree);
     });
     // The user's omitted struts are numbered in the final tree (the one the .scad shows).
     r.supports = sw.time("struts", progress, [&] {

@@ -6,7 +6,8 @@
 // Example:
 //   SupportTree leaves = hang_feet(hang_leaves(q, rest, p), hybrid.feet, p);
 //   SupportTree t = grow_tree(q, leaves, p);
-//   if (!feet_carried(t, hybrid.feet)) ...  // the tree lost a foot: grow without the hybrid
+//   if (!feet_carried(t, hybrid.feet)) ...  // the tree lost a foot: drop that foot's piece
+//   lost_feet(t, hybrid.feet)                 // which feet it lost
 #pragma once
 
 #include <vector>
@@ -21,5 +22,8 @@ SupportTree hang_feet(SupportTree hung, const std::vector<Vec3>& feet, const Par
 
 // Does the grown tree carry every foot: a leaf whose tip's top is the foot, with a strut below it?
 bool feet_carried(const SupportTree& grown, const std::vector<Vec3>& feet);
+
+// The feet the grown tree does not carry, in the order given.
+std::vector<Vec3> lost_feet(const SupportTree& grown, const std::vector<Vec3>& feet);
 
 }  // namespace cs

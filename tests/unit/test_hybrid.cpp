@@ -1,6 +1,7 @@
 // ceilings/hybrid: short walls under a ceiling, standing on the tree (issue #32 part 2).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "ceilings/hybrid.hpp"
@@ -89,6 +90,86 @@ TEST(Hybrid, TheTreeCarriesEveryFootAndCheckPassesIt) {
     EXPECT_FALSE(check_supports(h.model, tree_only, h.p, {}).ok());  // the pieces hold the deck
 }
 
+// Where the tree loses a foot, only that foot's piece goes (the pipeline then grows the tree again):
+// the samples only it carried go back to the tree, the others stay with the pieces left, and the
+// whole still passes `check`.
+TEST(Hybrid, WithoutALostFootOnlyItsPieceGoesAndItsSamplesGoBackToTheTree) {
+    Hybrid h = hybrid(high_deck(), 3);
+    ASSERT_GE(h.hybrid.walls.size(), 3u);
+    ModelQuery q(h.model);
+    const std::vector<Sample>& all = h.samples.samples;
+    // Nothing lost: the same pieces carry the same samples as support_hybrid found.
+    const Ceilings same = without_feet(q, all, {}, h.hybrid, {}, h.p);
+    EXPECT_EQ(same.walls.size(), h.hybrid.walls.size());
+    EXPECT_EQ(same.rest.size(), h.hybrid.rest.size());
+    EXPECT_EQ(same.covered, h.hybrid.covered);
+    const std::size_t gone = h.hybrid.walls.size() / 2;
+    const Ceilings fewer = without_feet(q, all, {}, h.hybrid, {h.hybrid.feet[gone]}, h.p);
+    ASSERT_EQ(fewer.walls.size(), h.hybrid.walls.size() - 1);
+    ASSERT_EQ(fewer.feet.size(), fewer.walls.size());
+    for (const Vec3& f : fewer.feet) EXPECT_GT(distance(f, h.hybrid.feet[gone]), 1e-6);
+    EXPECT_GT(fewer.rest.size(), h.hybrid.rest.size());  // its samples, back to the tree
+    EXPECT_GT(fewer.covered, 0u);                        // the others' stay with them
+    EXPECT_EQ(fewer.covered + fewer.rest.size(), all.size());
+    EXPECT_EQ(fewer.stay.size(), fewer.rest.size());
+    for (const Sample& s : h.hybrid.rest)  // the pieces left carry nothing the whole hybrid left
+        EXPECT_TRUE(std::any_of(fewer.rest.begin(), fewer.rest.end(), [&](const Sample& r) { return distance(r.p, s.p) == 0; }));
+    const SupportTree leaves = hang_feet(hang_leaves(q, fewer.rest, h.p), fewer.feet, h.p);
+    SizedTree grown = grow_cheaper_tree(q, leaves, h.p);
+    ASSERT_TRUE(feet_carried(grown.tree, fewer.feet));
+    EXPECT_EQ(lost_feet(grown.tree, h.hybrid.feet).size(), 1u);  // the piece gone has no leaf
+    const Supports s = finish_supports(std::move(grown), h.p, {}, fewer.walls);
+    const CheckResult r = check_supports(h.model, s.mesh, h.p, {});
+    EXPECT_TRUE(r.ok()) << r.summary();
+}
+
+// The deck beside a block with a ledge 3 mm over the bed (x 20..24): no room for the hybrid under
+// the ledge, so its samples always go to the tree.
+Mesh deck_beside_a_ledge() {
+    test::CellGrid g({-15, -2, 2, 15, 20, 24, 30}, {-6, -2, 2, 6}, {0, 3, 4, 20, 22});
+    g.fill({-2, -2, 0}, {2, 2, 20});
+    g.fill({-15, -6, 20}, {15, 6, 22});
+    g.fill({24, -6, 0}, {30, 6, 4});
+    g.fill({20, -6, 3}, {24, 6, 4});
+    return g.mesh();
+}
+
+// A region is weighed in the whole, not only against its own tree: here a tree whose feet cost
+// little standing alone and much where other leaves crowd them (where the ledge's samples grow in
+// the same tree). Alone, the deck's hybrid (one leaf per piece) is cheaper than the deck's own
+// tree; in the whole, with the ledge's tree, it is dearer, and the deck keeps its tree (the
+// molecule example, kept pose: its one hybrid region 22 % / 4 % cheaper alone on Cura /
+// PrusaSlicer, the whole 2 % / 2.5 % dearer with it).
+TEST(Hybrid, ARegionCheaperAloneButDearerInTheWholeKeepsItsTree) {
+    const Mesh model = deck_beside_a_ledge();
+    Params p;
+    p.hybrid_height = 3;
+    ModelQuery q(model);
+    const OverhangSamples sampled =
+        sample_overhangs(model, {p.critical_angle, p.sampling_distance, p.layer_height, touching_space(p)}, &q);
+    std::vector<Sample> deck;
+    for (const Sample& s : sampled.samples)
+        if (s.p.z > 10) deck.push_back(s);
+    const std::size_t ledge = sampled.samples.size() - deck.size();
+    ASSERT_GE(ledge, 4u);
+    ASSERT_GE(deck.size(), 20u);
+    const FeetTreeCounter crowding = [](const std::vector<Sample>& samples, const std::vector<Vec3>& feet) {
+        const bool beside_others = std::any_of(samples.begin(), samples.end(), [](const Sample& s) { return s.p.z < 10; });
+        return TreeCount{100.0 * samples.size() + (beside_others ? 300.0 : 10.0) * feet.size(), 0, 0};
+    };
+    // Alone (the deck's samples only) the hybrid wins.
+    const Ceilings alone = support_hybrid(q, deck, p, crowding);
+    ASSERT_FALSE(alone.walls.empty());
+    EXPECT_EQ(alone.regions, 1u);
+    EXPECT_GT(300.0 * alone.feet.size() + 100.0 * alone.rest.size(), 100.0 * deck.size());  // dearer among others
+    // In the whole it loses: every sample goes to the tree.
+    const Ceilings whole = support_hybrid(q, sampled.samples, p, crowding);
+    EXPECT_TRUE(whole.walls.empty());
+    EXPECT_TRUE(whole.feet.empty());
+    EXPECT_EQ(whole.rest.size(), sampled.samples.size());
+    EXPECT_EQ(whole.covered, 0u);
+}
+
 TEST(Hybrid, FeetCarriedOnlyWhereALeafHoldsEachWithAStrutBelow) {
     SupportTree t;
     t.nodes = {{{0, 0, 5}, NodeKind::Leaf, {0, 0, 6}, {0, 0, 6}}, {{0, 0, 0}, NodeKind::Bed}};
@@ -97,6 +178,10 @@ TEST(Hybrid, FeetCarriedOnlyWhereALeafHoldsEachWithAStrutBelow) {
     EXPECT_TRUE(feet_carried(t, {{0, 0, 6}}));
     EXPECT_FALSE(feet_carried(t, {{0, 0, 6}, {1, 0, 6}}));  // a foot with no leaf
     EXPECT_TRUE(feet_carried(t, {}));
+    const std::vector<Vec3> lost = lost_feet(t, {{0, 0, 6}, {1, 0, 6}, {2, 0, 6}});
+    ASSERT_EQ(lost.size(), 2u);  // in the order given
+    EXPECT_EQ(lost[0].x, 1);
+    EXPECT_EQ(lost[1].x, 2);
 }
 
 TEST(Hybrid, HangFeetAddsALeafATipBelowEachFootInTheLeavesOrder) {
