@@ -508,10 +508,14 @@ std::vector<Sample> top_up_samples(const Mesh& m, const OverhangOptions& o, cons
     }
     // Would a sample left bare at x leave some point it was to cover beyond the full reach of
     // everything that holds the overhang up?
+    // A point resting on material within the full reach holds y too, as `check` lets its resting
+    // points hold their neighbours (its own points, though: it may have none as near).
+    const Cover full_cover{reach, o.critical_angle};
     auto beyond_full_reach = [&](const Vec3& x) {
         if (!near) near = demand_grid(demand, lean.reach);
         return near->visit_near(x, 1, [&](const Vec3& y) {
-            return y.z >= o.bed_height && lean(x, y) && !full.covered(y) && !rests(y);
+            return y.z >= o.bed_height && lean(x, y) && !full.covered(y) && !rests(y) &&
+                   !near->visit_near(y, 2, [&](const Vec3& z) { return full_cover(z, y) && rests(z); });
         });
     };
     fill_demand(demand, o, needs, rests, [&](const Vec3& x, SampleKind kind) {

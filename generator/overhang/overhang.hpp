@@ -136,7 +136,8 @@ void sort_top_down(std::vector<Sample>& samples);
 // get holds the overhang up (its tip's top, at x's height), nullopt where none fits (a knife edge,
 // a slot too low for a pillar). A sample goes on the uncovered point itself when its support fits
 // there, or when, bare, it would leave no point near it beyond the full reach (`check`'s) of what
-// holds the overhang up (it then adds nothing built, as before); else on the nearest point of the
+// holds the overhang up or of a point resting on material (as `check` lets those hold their
+// neighbours): it then adds nothing built, as before. Else it goes on the nearest point of the
 // overhang, within reach of it, whose support fits and still covers it; else on the point, bare.
 using SupportAt = std::function<std::optional<Vec3>(const Vec3&)>;
 std::vector<Sample> top_up_samples(const Mesh& m, const OverhangOptions& o, const ModelQuery* model,
