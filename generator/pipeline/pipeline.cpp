@@ -161,25 +161,45 @@ SizedTree grow_cheaper_tree(const ModelQuery& q, const SupportTree& hung, const 
     return best;
 }
 
-FeetTreeCounter feet_tree_counter(const ModelQuery& q, const Params& p, const std::vector<Box3>& support_blockers) {
-    // The answers by their question, byte for byte (the samples' points and kinds, the feet): the
-    // walls and the hybrid price the same region's own tree when both lay one out over it.
+namespace {
+
+// A counter's question, byte for byte: the samples' points and kinds, and the feet.
+std::string question(const std::vector<Sample>& samples, const std::vector<Vec3>& feet) {
+    std::string key;
+    key.reserve(samples.size() * (3 * sizeof(double) + sizeof(SampleKind)) + feet.size() * 3 * sizeof(double) + 8);
+    auto put = [&key](const auto& x) { key.append(reinterpret_cast<const char*>(&x), sizeof x); };
+    put(samples.size());
+    for (const Sample& s : samples) put(s.p.x), put(s.p.y), put(s.p.z), put(s.kind);
+    for (const Vec3& f : feet) put(f.x), put(f.y), put(f.z);
+    return key;
+}
+
+// The trees a counter grew, by their question: the hybrid's weighing grows the whole tree the
+// tree stage then grows again from the same leaves (run_job takes it from here).
+using GrownTrees = std::unordered_map<std::string, SizedTree>;
+
+FeetTreeCounter feet_tree_counter(const ModelQuery& q, const Params& p, const std::vector<Box3>& support_blockers,
+                                  std::shared_ptr<GrownTrees> keep) {
+    // The answers by their question: the walls and the hybrid price the same region's own tree
+    // when both lay one out over it.
     auto known = std::make_shared<std::unordered_map<std::string, TreeCount>>();
-    return [&q, p, support_blockers, known](const std::vector<Sample>& samples, const std::vector<Vec3>& feet) {
-        std::string key;
-        key.reserve(samples.size() * (3 * sizeof(double) + sizeof(SampleKind)) + feet.size() * 3 * sizeof(double) + 8);
-        auto put = [&key](const auto& x) { key.append(reinterpret_cast<const char*>(&x), sizeof x); };
-        put(samples.size());
-        for (const Sample& s : samples) put(s.p.x), put(s.p.y), put(s.p.z), put(s.kind);
-        for (const Vec3& f : feet) put(f.x), put(f.y), put(f.z);
+    return [&q, p, support_blockers, known, keep](const std::vector<Sample>& samples, const std::vector<Vec3>& feet) {
+        std::string key = question(samples, feet);
         if (const auto it = known->find(key); it != known->end()) return it->second;
         const SupportTree hung = hang_feet(hang_leaves(q, samples, p, support_blockers), feet, p);
-        const SizedTree t = grow_cheaper_tree(q, hung, p, support_blockers);
+        SizedTree t = grow_cheaper_tree(q, hung, p, support_blockers);
         const SlicerCost c = t.tree.slicer_cost ? *t.tree.slicer_cost : estimate_slicer_cost(t.tree, mean_strut_widths(t), p);
         const TreeCount count{c.island_layers, c.outline_mm, c.travel_mm};
+        if (keep) keep->emplace(key, std::move(t));
         known->emplace(std::move(key), count);
         return count;
     };
+}
+
+}  // namespace
+
+FeetTreeCounter feet_tree_counter(const ModelQuery& q, const Params& p, const std::vector<Box3>& support_blockers) {
+    return feet_tree_counter(q, p, support_blockers, nullptr);
 }
 
 namespace {
@@ -661,10 +681,11 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     // Walls under ceilings low over the bed take the samples they carry; under ceilings higher up
     // the hybrid's short walls (on the tree) take theirs; the tree grows from the rest.
     Ceilings walls_only, hybrid;
+    auto counted = std::make_shared<GrownTrees>();
     Ceilings ceilings = sw.time("ceilings", progress, [&] {
         // One counter for both: it remembers the trees it grew (a region the walls priced is often
         // the hybrid's too).
-        const FeetTreeCounter count = feet_tree_counter(*query, p, blockers);
+        const FeetTreeCounter count = feet_tree_counter(*query, p, blockers, counted);
         const TipAt tip_at = tips_of(hung);
         walls_only = support_ceilings(*query, r.samples.samples, p,
                                       [&count](const std::vector<Sample>& s) { return count(s, {}); }, blockers,
@@ -677,6 +698,12 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         return c.walls.empty() ? SupportTree{} : hang_feet(hang_leaves(*query, c.rest, p, blockers), c.feet, p);
     };
     SupportTree hung_rest = leaves_of(ceilings);
+    // The tree for these leaves, where the hybrid's weighing grew it already (the same leaves, the
+    // same growth): taken once, by the first growth below.
+    std::optional<SizedTree> counted_tree;
+    if (!ceilings.walls.empty())
+        if (auto it = counted->find(question(ceilings.rest, ceilings.feet)); it != counted->end()) counted_tree = std::move(it->second);
+    counted.reset();
     // The tree and the columns baseline start from the same leaves (hanging them does not depend
     // on the strategy); the baseline carries every sample.
     SupportTree* leaves = ceilings.walls.empty() ? &hung : &hung_rest;
@@ -684,7 +711,8 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     // beside them, and the tree grown once more with their leaves (bird and molecule at 120 mm).
     // One stage: the regrowth is part of growing the tree.
     auto grow = [&] {
-        SizedTree first = grow_cheaper_tree(*query, *leaves, p, blockers);
+        SizedTree first = counted_tree ? std::move(*counted_tree) : grow_cheaper_tree(*query, *leaves, p, blockers);
+        counted_tree.reset();
         if (first.tree.stats.dropped <= leaves->stats.dropped) return first;
         std::vector<Vec3> lost = lost_samples(*leaves, first.tree);
         // A tip the walls leaned on, lost: the samples it held with them hold nothing either.
