@@ -279,8 +279,10 @@ double air_below(const ModelQuery& model, const Vec3& x) {
     return x.z - (hit ? hit->point.z : 0.0);
 }
 
+bool material_right_below(const ModelQuery& model, const Vec3& x) { return model.inside(x - Vec3{0, 0, kJustBelow}); }
+
 bool rests_on_material(const ModelQuery& model, const Vec3& x, double touching_space) {
-    if (model.inside(x - Vec3{0, 0, kJustBelow})) return true;  // overlapping shells: not a surface of the print
+    if (material_right_below(model, x)) return true;  // overlapping shells: not a surface of the print
     return air_below(model, x) <= touching_space;
 }
 

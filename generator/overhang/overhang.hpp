@@ -96,6 +96,10 @@ struct Cover {
 // rising from the rim the point lies on, which the ray runs along, is not met at the point itself.
 double air_below(const ModelQuery& model, const Vec3& x);
 
+// Is there material right under an overhang point (overlapping shells: the face is no surface of
+// the print)? Probed as far under the point as air_below starts its ray.
+bool material_right_below(const ModelQuery& model, const Vec3& x);
+
 // Does an overhang point rest on material below it (inside overlapping shells, or with at most
 // `touching_space` of air below)? Such a point needs no support (and gets no contact).
 bool rests_on_material(const ModelQuery& model, const Vec3& x, double touching_space);

@@ -111,7 +111,7 @@ private:
         const double tip = p_.gap + p_.tip_length;
         for (const auto& s : samples) {
             // A face with material right below it (overlapping shells) is no overhang.
-            if (model_.inside(s.p - Vec3{0, 0, kTreeTuning.inside_probe_below_sample})) {
+            if (material_right_below(model_, s.p)) {
                 ++t_.stats.internal;
                 continue;
             }

@@ -19,11 +19,6 @@ struct TreeTuning {
     // Eight directions per ring; the outer ring turned by half a step so the two rings interleave.
     int fan_directions = 8;
 
-    // ---- nudges off the model's surface
-    // "Material right below a sample" (overlapping shells) is probed this far under it: a tenth
-    // of the thinnest wall that matters, still clear of the face's own rounding.
-    double inside_probe_below_sample = 0.01;
-
     // ---- clearance tests (tree/clearance.hpp)
     // can_escape tries a strut this long (mm) along each fan direction: a couple of strut widths,
     // enough to leave a crevice, short enough that the answer is about here and not far away.
