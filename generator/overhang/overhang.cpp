@@ -455,6 +455,80 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
     return res;
 }
 
+namespace {
+
+// Where the top-up meets a point under which no support fits (a knife edge, a slot too low for a
+// pillar): would the sample, left bare there, leave a point beyond `check`'s full reach of what
+// holds the overhang up, and if so, where nearby a support fits that still covers the point. The
+// demand by place is made for the first such point only (most runs meet none).
+class PlacesWhereNoneFits {
+public:
+    using Rests = std::function<bool(const Vec3&)>;
+    PlacesWhereNoneFits(const Demand& demand, const OverhangOptions& o, Rests rests, const SupportAt& support_at)
+        : demand_(demand), o_(o), rests_(std::move(rests)), support_at_(support_at),
+          lean_{lean_reach(o), o.critical_angle}, full_cover_{coverage_reach(o.sampling_distance), o.critical_angle},
+          full_{coverage_reach(o.sampling_distance), o.critical_angle} {}
+
+    // `at` holds the overhang up (a contact, an anchor, a support just placed).
+    void holds(const Vec3& at) { full_.add(at); }
+
+    // Would a sample left bare at x leave some point it was to cover beyond the full reach of
+    // everything that holds the overhang up? A point resting on material within the full reach
+    // holds it too, as `check` lets its resting points hold their neighbours (its own points,
+    // though: it may have none as near).
+    bool bare_leaves_beyond_full_reach(const Vec3& x) {
+        const XyGrid<Vec3>& near = demand_near();
+        return near.visit_near(x, 1, [&](const Vec3& y) {
+            return y.z >= o_.bed_height && lean_(x, y) && !full_.covered(y) && !rests_(y) &&
+                   !near.visit_near(y, 2, [&](const Vec3& z) { return full_cover_(z, y) && rests_(z); });
+        });
+    }
+
+    // The nearest demand point within reach of x whose support fits and covers x, the candidates
+    // kCandidateSpacing apart at least, kMostCandidates of them; nullopt when none does.
+    struct Moved {
+        Vec3 sample, held_at;  // where the sample goes, and where its support holds the overhang up
+    };
+    std::optional<Moved> moved_in(const Vec3& x) {
+        std::vector<Vec3> cands;
+        demand_near().visit_near(x, 1, [&](const Vec3& y) {
+            if (y.z >= o_.bed_height && lean_(y, x) && !(y == x)) cands.push_back(y);
+            return false;
+        });
+        std::sort(cands.begin(), cands.end(), [&](const Vec3& a, const Vec3& b) {
+            const double da = horizontal_distance(a, x), db = horizontal_distance(b, x);
+            if (da != db) return da < db;
+            return std::tie(a.z, a.x, a.y) > std::tie(b.z, b.x, b.y);
+        });
+        std::vector<Vec3> tried;
+        for (const Vec3& y : cands) {
+            if (tried.size() >= kMostCandidates) break;
+            if (std::any_of(tried.begin(), tried.end(), [&](const Vec3& t) { return horizontal_distance(t, y) < kCandidateSpacing; }))
+                continue;
+            tried.push_back(y);
+            if (rests_(y)) continue;
+            if (const auto c = support_at_(y); c && lean_(*c, x)) return Moved{y, *c};
+        }
+        return std::nullopt;
+    }
+
+private:
+    const XyGrid<Vec3>& demand_near() {
+        if (!near_) near_ = demand_grid(demand_, lean_.reach);
+        return *near_;
+    }
+
+    const Demand& demand_;
+    const OverhangOptions& o_;
+    Rests rests_;
+    const SupportAt& support_at_;
+    const Cover lean_, full_cover_;
+    CoverGrid full_;                    // what holds the overhang up, at the full reach (`check`'s)
+    std::optional<XyGrid<Vec3>> near_;  // the demand by place
+};
+
+}  // namespace
+
 std::vector<Sample> top_up_samples(const Mesh& m, const OverhangOptions& o, const ModelQuery* model,
                                    const OverhangSamples& sampled, const std::vector<Vec3>& coverers,
                                    const SupportAt& support_at) {
@@ -475,62 +549,22 @@ std::vector<Sample> top_up_samples(const Mesh& m, const OverhangOptions& o, cons
         return x.z >= o.bed_height && !cells.full_cell_around(x, above) && !grid.covered(x, above) && !rests(x);
     };
     const Demand demand = coverage_demand(m, cls, sampled.edges, o, kStrictEdgeStepOfReach);
-    const Cover lean{lean_reach(o), o.critical_angle};
-    std::optional<XyGrid<Vec3>> near;  // the demand by place, made for the first sample whose support does not fit
-    // Where no support fits under x: the nearest demand point within reach of x whose support
-    // fits and covers x, the candidates kCandidateSpacing apart at least, kMostCandidates of them.
-    auto moved_in = [&](const Vec3& x) -> std::optional<std::pair<Vec3, Vec3>> {
-        if (!near) near = demand_grid(demand, lean.reach);
-        std::vector<Vec3> cands;
-        near->visit_near(x, 1, [&](const Vec3& y) {
-            if (y.z >= o.bed_height && lean(y, x) && !(y == x)) cands.push_back(y);
-            return false;
-        });
-        std::sort(cands.begin(), cands.end(), [&](const Vec3& a, const Vec3& b) {
-            const double da = horizontal_distance(a, x), db = horizontal_distance(b, x);
-            if (da != db) return da < db;
-            return std::tie(a.z, a.x, a.y) > std::tie(b.z, b.x, b.y);
-        });
-        std::vector<Vec3> tried;
-        for (const Vec3& y : cands) {
-            if (tried.size() >= kMostCandidates) break;
-            if (std::any_of(tried.begin(), tried.end(), [&](const Vec3& t) { return horizontal_distance(t, y) < kCandidateSpacing; }))
-                continue;
-            tried.push_back(y);
-            if (rests(y)) continue;
-            if (const auto c = support_at(y); c && lean(*c, x)) return std::pair{y, *c};
-        }
-        return std::nullopt;
-    };
-    // What holds the overhang up at the full reach (`check`'s): a point within it is left as before.
-    CoverGrid full{reach, o.critical_angle};
+    PlacesWhereNoneFits where{demand, o, rests, support_at};
     if (support_at) {
-        for (const auto& c : coverers) full.add(c);
-        for (const auto& a : sampled.anchors) full.add(a);
+        for (const auto& c : coverers) where.holds(c);
+        for (const auto& a : sampled.anchors) where.holds(a);
     }
-    // Would a sample left bare at x leave some point it was to cover beyond the full reach of
-    // everything that holds the overhang up?
-    // A point resting on material within the full reach holds y too, as `check` lets its resting
-    // points hold their neighbours (its own points, though: it may have none as near).
-    const Cover full_cover{reach, o.critical_angle};
-    auto beyond_full_reach = [&](const Vec3& x) {
-        if (!near) near = demand_grid(demand, lean.reach);
-        return near->visit_near(x, 1, [&](const Vec3& y) {
-            return y.z >= o.bed_height && lean(x, y) && !full.covered(y) && !rests(y) &&
-                   !near->visit_near(y, 2, [&](const Vec3& z) { return full_cover(z, y) && rests(z); });
-        });
-    };
     fill_demand(demand, o, needs, rests, [&](const Vec3& x, SampleKind kind) {
         const std::optional<Vec3> own = support_at ? support_at(x) : std::nullopt;
-        if (support_at && !own && beyond_full_reach(x))
-            if (const auto moved = moved_in(x)) {
-                full.add(moved->second);
-                grid.add(moved->second);
-                out.push_back({moved->first, kind});
+        if (support_at && !own && where.bare_leaves_beyond_full_reach(x))
+            if (const auto moved = where.moved_in(x)) {
+                where.holds(moved->held_at);
+                grid.add(moved->held_at);
+                out.push_back({moved->sample, kind});
                 return;
             }
         grid.add(x);
-        if (own) full.add(*own);  // a sample left bare holds nothing up
+        if (own) where.holds(*own);  // a sample left bare holds nothing up
         out.push_back({x, kind});
     }, false);
     sort_top_down(out);
