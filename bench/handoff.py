@@ -3,13 +3,16 @@
 
 usage: bench/handoff.py [--bin build/generator/clever-support] [--models a,b,PATH@80mm,...] [--jobs 2] [--work DIR]
                         [--out bench/results] [--stem handoff] [--routes k1,k2] [--prusa-set KEY=VALUE ...]
-                        [--keep-gcode] [--report-only]
+                        [--keep-gcode] [--report-only] [--orient keep|auto]
        bench/handoff.py --validation   the validation parts (bench/validation, never tuned on) and the five
                                         examples at 80 mm -> <out>/validation.{json,md,svg}
        bench/handoff.py --tuning       the shared models (the tuning set) -> <out>/tuning.{json,md,svg}
 
-Per model (shared models at their benchmark.json scale, orientation kept):
-  generator  clever-support --orient keep (tree) and --strategy columns; `clever-support check` on the tree
+Per model (shared models at their benchmark.json scale, orientation kept unless --orient auto):
+  generator  clever-support --orient keep (tree) and --strategy columns; `clever-support check` on the tree.
+             With --orient auto the tree is grown in the pose the generator picks (what a user gets by
+             default); the columns baseline and every slicer's own supports are then made on that placed
+             model (<name>.model.stl, pose kept), so all routes print the part in the same pose
   Cura       none, normal, tree (on <name>.model.stl); ours as model geometry (<name>.supported.stl, supports
              off); ours as a Cura support mesh (model.stl + supports.stl, per-mesh support_mesh=true,
              support_mesh_drop_down=false, profile mode "mesh"); our columns baseline the same way
@@ -51,6 +54,10 @@ import printed_bodies  # noqa: E402
 import slice as slice_stl  # noqa: E402
 import wall_time  # noqa: E402
 
+# How the report names the pose of a run (--orient).
+ORIENT_WORDS = {"keep": "orientation kept",
+                "auto": "orientation the generator's own (--orient auto; the slicers' own supports and the columns "
+                        "baseline on that placed model)"}
 DEFAULT_MODELS = ["u_overhang", "extruder_idler", "rocker_arm", "armadillo", "beast", "nefertiti"]
 # The tuning set of --tuning: every shared benchmark model but menger_sponge3, whose Cura tree slice alone
 # takes 5-8 min and whose columns baseline does not slice within the timeout (README, run times).
@@ -119,9 +126,9 @@ def cpu_seconds_of(cmd, timeout):
     return p, cpu
 
 
-def generate(args, name, path, scale, work, strategy):
+def generate(args, name, path, scale, work, strategy, orient="keep"):
     out = os.path.join(work, name, strategy)
-    cmd = [args.bin, path, "--scale", repr(scale), "--orient", "keep", "--strategy", strategy, "--out", out,
+    cmd = [args.bin, path, "--scale", repr(scale), "--orient", orient, "--strategy", strategy, "--out", out,
            "--json", "--no-timings"]
     p, cpu = cpu_seconds_of(cmd, args.gen_timeout)
     if p is None or p.returncode != 0:
@@ -135,6 +142,16 @@ def generate(args, name, path, scale, work, strategy):
             "struts": rep["supports"]["struts"], "samples": rep["overhangs"]["samples"],
             "slicer_estimate": rep["supports"].get("slicer_estimate"),
             "triangles": rep["input"]["triangles"]}
+
+
+def columns_in_pose_of(args, name, path, scale, tree):
+    """The columns baseline in the tree's pose: as given (--orient keep), or on the tree's placed model."""
+    if args.orient == "keep" or "error" in tree:
+        return generate(args, name, path, scale, args.work, "columns")
+    posed = os.path.join(args.work, name, "posed", name + ".stl")  # the generator names outputs by the input's stem
+    os.makedirs(os.path.dirname(posed), exist_ok=True)
+    shutil.copyfile(os.path.join(tree["dir"], name + ".model.stl"), posed)
+    return generate(args, name, posed, 1.0, args.work, "columns")
 
 
 def check(args, name, gen):
@@ -164,6 +181,13 @@ def inputs_of(what, name, tree, columns):
     }[what]
 
 
+def stl_triangles(path):
+    """Triangles in a binary STL (the generator writes binary), from its header's count."""
+    with open(path, "rb") as f:
+        head = f.read(84)
+    return int.from_bytes(head[80:84], "little") if len(head) == 84 else 0
+
+
 def removed_note(n):
     """Body layers in first layers CuraEngine removed because the model's slice there was empty."""
     return f" (+{n} in the empty first layer the slicer removed)" if n else ""
@@ -175,6 +199,10 @@ def slice_route(args, key, name, tree, columns, work):
     if ins is None:
         return {"error": "no columns output"}
     models, meshes = ins
+    if meshes and not any(stl_triangles(m) for m in meshes):
+        # No support at all (a pose that needs none, as --orient auto may pick): the bare model is what
+        # the route prints. slice.py refuses an empty support mesh.
+        meshes, support = [], "none"
     out_dir = os.path.join(work, name, "slices", key)
     cmd = [sys.executable, SLICE_PY, "--slicer", slicer, "--support", support, "--json", "--timeout",
            str(args.slice_timeout), "--out-dir", out_dir] + sum((["--support-mesh", m] for m in meshes), [])
@@ -380,7 +408,7 @@ def report_md(data):
          (f"PrusaSlicer settings on top of the profile, on every PrusaSlicer route: "
           f"{', '.join('`' + kv + '`' for kv in st['prusa_set'])}.\n" if st.get("prusa_set") else ""),
          "Profile: bench/slicers/profile.json (both slicers). Models: shared models at their benchmark.json scale "
-         "(others at the scale their row gives), orientation kept. *Support* numbers are the route minus the bare model sliced in the same slicer "
+         "(others at the scale their row gives), " + ORIENT_WORDS[st.get("orient", "keep")] + ". *Support* numbers are the route minus the bare model sliced in the same slicer "
          "and run: grams, minutes, retractions, travel (m). *Of them support→support*: retractions on a travel from one "
          "support extrusion to the next (routes the slicer prints as support); with Cura's limit_support_retractions "
          "those are travels it routed around the model instead of straight through air. *Islands*: support islands summed over layers (a new "
@@ -725,6 +753,9 @@ def main():
     ap.add_argument("--prusa-set", action="append", default=[], metavar="KEY=VALUE",
                     help="a PrusaSlicer setting on top of profile.json for every PrusaSlicer route (repeatable), "
                          "e.g. perimeter_generator=classic: what a user who picked the classic perimeters gets")
+    ap.add_argument("--orient", choices=sorted(ORIENT_WORDS), default="keep",
+                    help="keep: every model as given (default); auto: the tree in the pose the generator picks, "
+                         "the columns baseline and the slicers' own supports on that placed model")
     ap.add_argument("--keep-gcode", action="store_true",
                     help="keep each G-code gzipped beside its slice (<work>/<model>/slices/<key>/out.gcode.gz)")
     args = ap.parse_args()
@@ -763,7 +794,7 @@ def main():
     data = {"stamp": {"date": datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC"),
                       "nproc": os.cpu_count(), "load": " ".join(open("/proc/loadavg").read().split()[:3]),
                       "commit": commit, "jobs": args.jobs, "profile": "bench/slicers/profile.json",
-                      "routes": routes, "prusa_set": args.prusa_set},
+                      "routes": routes, "prusa_set": args.prusa_set, "orient": args.orient},
             "models": {}}
     cpu_total = 0.0
     os.makedirs(args.work, exist_ok=True)
@@ -782,8 +813,9 @@ def main():
             return 2
         log(f"{name}: generating (scale {scale})")
         strategies = ("tree", "columns") if "cura_columns_mesh" in routes else ("tree",)
-        m = {"set": group, "scale": scale,
-             "gen": {s: generate(args, name, path, scale, args.work, s) for s in strategies}}
+        m = {"set": group, "scale": scale, "gen": {"tree": generate(args, name, path, scale, args.work, "tree", args.orient)}}
+        if "columns" in strategies:
+            m["gen"]["columns"] = columns_in_pose_of(args, name, path, scale, m["gen"]["tree"])
         cpu_total += sum(g.get("cpu_s") or 0 for g in m["gen"].values())
         if "error" in m["gen"]["tree"]:
             m["error"] = m["gen"]["tree"]["error"]
