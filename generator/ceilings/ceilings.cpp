@@ -1293,7 +1293,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
             if (prefer_near && l.w.turned == 0) return std::nullopt;  // the meander again
             for (const Run& run : l.w.walls)
                 for (auto& piece : flat_pieces(run, p)) l.pieces.push_back(piece);
-            l.pieces = finish(std::move(l.pieces));
+            l.pieces = finish(printable_tops(std::move(l.pieces), p));
             if (l.pieces.empty()) return std::nullopt;
             if (prefer_near) l.pieces = merge_in_line(std::move(l.pieces));
             l.tops = wall_contacts(q, l.pieces, p);
@@ -1450,6 +1450,75 @@ Ceilings carried_by(const ModelQuery& q, const std::vector<Sample>& samples, con
 
 double wall_thickness_for(const Params& p, double height) {
     return std::max(p.wall_thickness, strength_width(p, height, 0));
+}
+
+std::vector<CeilingWall> printable_tops(std::vector<CeilingWall> pieces, const Params& p) {
+    // Lengths are sums of station distances: two 0.5 mm stations are exactly long enough
+    // (measured), and may come out a rounding short of it.
+    constexpr double kRounding = 1e-6;
+    auto flat = [](const Vec3& x) { return Vec3{x.x, x.y, 0}; };
+    auto length = [](const CeilingWall& w) { return horizontal_distance(w.from, w.to); };
+    // Pieces touch where an end of one lies in the other's footprint: end to end along a row,
+    // a join's end inside the row it joins.
+    auto within = [&](const Vec3& x, const CeilingWall& w) {
+        return point_segment_distance(flat(x), flat(w.from), flat(w.to)) <= 0.5 * w.thickness + kRounding;
+    };
+    auto touch = [&](const CeilingWall& a, const CeilingWall& b) {
+        return within(a.from, b) || within(a.to, b) || within(b.from, a) || within(b.to, a);
+    };
+    auto is_short = [&](const CeilingWall& w) { return length(w) + kRounding < kClassicLengthOverThickness * w.thickness; };
+    if (std::none_of(pieces.begin(), pieces.end(), is_short)) return pieces;  // most layouts
+    for (bool removed = true; removed;) {
+        removed = false;
+        const std::size_t n = pieces.size();
+        double thickest = 0;
+        for (const CeilingWall& w : pieces) thickest = std::max(thickest, w.thickness);
+        std::vector<std::vector<std::size_t>> near(n);
+        std::vector<double> levels;
+        for (std::size_t i = 0; i < n; ++i) {
+            levels.push_back(pieces[i].top);
+            for (std::size_t j = i + 1; j < n; ++j)
+                if (touch(pieces[i], pieces[j])) near[i].push_back(j), near[j].push_back(i);
+        }
+        std::sort(levels.begin(), levels.end(), std::greater<>());
+        levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+        // Is the stretch holding piece i at `level` (the pieces there reaching it, touching) long
+        // enough for its thickest piece? Found as soon as it is long enough for any piece.
+        std::vector<std::size_t> seen(n, 0), stack;
+        std::size_t search = 0;
+        auto long_enough = [&](std::size_t i, double level) {
+            double len = 0, thick = 0;
+            stack.assign(1, i), seen[i] = ++search;
+            while (!stack.empty()) {
+                const CeilingWall& w = pieces[stack.back()];
+                stack.pop_back();
+                len += length(w), thick = std::max(thick, w.thickness);
+                if (len + kRounding >= kClassicLengthOverThickness * thickest) return true;
+                for (std::size_t j : near[&w - pieces.data()])
+                    if (seen[j] != search && pieces[j].top >= level && pieces[j].bottom < level) seen[j] = search, stack.push_back(j);
+            }
+            return len + kRounding >= kClassicLengthOverThickness * thick;
+        };
+        std::vector<double> tops(n);
+        for (std::size_t i = 0; i < n && !removed; ++i) {
+            const CeilingWall& w = pieces[i];
+            tops[i] = w.top;
+            if (!is_short(w)) continue;  // stands long enough on its own
+            // The highest level at or under its top where it stands long enough (the stretch
+            // holding it only grows lower down).
+            auto level = std::find_if(std::lower_bound(levels.begin(), levels.end(), w.top, std::greater<>()), levels.end(),
+                                      [&](double z) { return z <= w.bottom || long_enough(i, z); });
+            if (level == levels.end() || *level <= w.bottom) continue;  // never long enough: as it is
+            tops[i] = *level;
+            if (tops[i] - w.bottom < p.layer_height) {  // less than a layer left: not built
+                pieces.erase(pieces.begin() + static_cast<long>(i));
+                removed = true;
+            }
+        }
+        if (!removed)
+            for (std::size_t i = 0; i < n; ++i) pieces[i].top = tops[i];
+    }
+    return pieces;
 }
 
 Box3 wall_box(const CeilingWall& w, double margin) {

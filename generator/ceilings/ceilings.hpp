@@ -25,7 +25,9 @@
 //               the model stand on it as pillars do
 //     tops      one air gap under the lowest point of the ceiling over the wall's width, at every
 //               station (kStation apart); each row is then cut into pieces with a flat top and
-//               floor, so a round ceiling gets a staircase that follows it
+//               floor, so a round ceiling gets a staircase that follows it; a piece too short to
+//               print alone on a layer comes down to where its stretch of wall is long enough
+//               (printable_tops)
 //     joins     a short wall between neighbouring rows at alternate ends (a meander)
 //     strength  every piece stands on its own: as thick as the strength rule asks of a column
 //               its height (wall_thickness_for), never thinner than the wall thickness
@@ -171,5 +173,26 @@ Box3 wall_box(const CeilingWall& w, double margin = 0);
 // How thick a wall `height` tall is built: the wall thickness, or the strength rule's width for a
 // column that tall, whichever is more.
 double wall_thickness_for(const Params& p, double height);
+
+// PrusaSlicer's classic perimeter generator (perimeter_generator = classic, the user's choice)
+// prints a wall one bead wide as a thin wall, its medial axis, only where the wall stands on the
+// layer at least this many times as long as it is thick; shorter, the layer prints nothing of
+// it. Measured with the .prusa.3mf's supports volume (PrusaSlicer 2.5, bench/slicers/profile.json):
+// 0.5 mm thick, 0.99 mm long printed nothing and 1.0 mm printed; 0.7 mm thick, 1.36 nothing and
+// 1.4 printed. (Arachne, the default, prints any length.)
+constexpr double kClassicLengthOverThickness = 2.0;
+
+// A region's flat pieces (its rows and joins) with tops that every slicer prints: on every layer,
+// each stretch of pieces reaching it (pieces that touch: end to end along a row, a join's end in
+// its row) is at least kClassicLengthOverThickness times as long as its thickest piece is thick.
+// So a piece shorter than that is lowered to the highest level at which the stretch holding it is
+// that long: a short piece standing above its neighbours comes down to where it and they make such
+// a stretch (the wheel at 80 mm: two rows' 0.5 mm end pieces, 0.06 and 0.19 mm over the rest of
+// their row and the join there, printed nothing on their top layers under classic). Where less than a layer of a
+// piece would be left it is not built (classic prints none of it). A stretch shorter than that in
+// all is left as it is, and so is a piece's foot (the hybrid's feet stand on tips). A lowered top
+// is then judged as any other: where the ceiling is out of a contact's reach (wall_contacts), the
+// samples it held stay with the tree.
+std::vector<CeilingWall> printable_tops(std::vector<CeilingWall> pieces, const Params& p);
 
 }  // namespace cs

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <set>
 
 #include "ceilings/ceilings.hpp"
@@ -644,4 +645,122 @@ TEST(Ceilings, ATwistedBladesUndersideGetsLongRowsAlongIt) {
     EXPECT_GT(long_rows, 0.8 * rows);
     EXPECT_GE(w.ceilings.covered, 0.95 * w.samples.samples.size());
     expect_walls_hold_what_they_take(w, "twisted plate at 60 degrees");
+}
+
+namespace {
+
+// The shortest stretch of walls on any layer, over how long PrusaSlicer's classic perimeters need
+// it (kClassicLengthOverThickness times its thickest piece): on the layer whose middle is at
+// (k + 0.5) layer heights, the pieces there (foot below it, top above it) that touch (an end of
+// one in the other's footprint) make a stretch, its length their lengths summed. Under 1: a layer
+// classic prints nothing of. `where`: that layer's middle and the stretch's first piece.
+double shortest_stretch(const std::vector<CeilingWall>& walls, const Params& p, std::string* where = nullptr) {
+    auto flat = [](const Vec3& x) { return Vec3{x.x, x.y, 0}; };
+    auto within = [&](const Vec3& x, const CeilingWall& w) {
+        return point_segment_distance(flat(x), flat(w.from), flat(w.to)) <= 0.5 * w.thickness + 1e-6;
+    };
+    double worst = INFINITY, top = 0;
+    for (const CeilingWall& w : walls) top = std::max(top, w.top);
+    for (int k = 0; (k + 0.5) * p.layer_height < top; ++k) {
+        const double mid = (k + 0.5) * p.layer_height;
+        std::vector<std::size_t> here, group;
+        for (std::size_t i = 0; i < walls.size(); ++i)
+            if (walls[i].bottom < mid && mid < walls[i].top) here.push_back(i);
+        group.resize(here.size());
+        for (std::size_t a = 0; a < here.size(); ++a) group[a] = a;
+        auto root = [&](std::size_t a) {
+            while (group[a] != a) a = group[a];
+            return a;
+        };
+        for (std::size_t a = 0; a < here.size(); ++a)
+            for (std::size_t b = a + 1; b < here.size(); ++b) {
+                const CeilingWall &u = walls[here[a]], &v = walls[here[b]];
+                if (within(u.from, v) || within(u.to, v) || within(v.from, u) || within(v.to, u)) group[root(a)] = root(b);
+            }
+        std::map<std::size_t, std::pair<double, double>> stretches;  // root: length, thickest
+        for (std::size_t a = 0; a < here.size(); ++a) {
+            auto& s = stretches[root(a)];
+            s.first += horizontal_distance(walls[here[a]].from, walls[here[a]].to);
+            s.second = std::max(s.second, walls[here[a]].thickness);
+        }
+        for (const auto& [r, s] : stretches) {
+            const double ratio = (s.first + 1e-6) / (kClassicLengthOverThickness * s.second);
+            if (ratio < worst && where) {
+                const CeilingWall& w = walls[here[r]];
+                *where = "layer at " + std::to_string(mid) + " mm, a stretch " + std::to_string(s.first) + " mm long at (" +
+                         std::to_string(w.from.x) + ", " + std::to_string(w.from.y) + ")";
+            }
+            worst = std::min(worst, ratio);
+        }
+    }
+    return worst;
+}
+
+}  // namespace
+
+// #32: PrusaSlicer's classic perimeter generator prints a one-bead wall on a layer only where it
+// stands there at least twice as long as it is thick. A row whose ceiling rises at its end (a
+// staircase up to a rim) ended in a 0.5 mm piece over its neighbours, alone on its top layer: the
+// wheel at 80 mm lost 2 of 3687 body layers so under classic (none under Arachne). Under ramps,
+// vaults and bores, and ceilings climbing steeply along the rows, every layer of the walls is now
+// long enough, and what the walls take they still hold. On the code before 2026-11-28: the steep
+// climbs left 0.5 mm stretches alone on a layer.
+TEST(Ceilings, EveryLayerOfTheWallsIsLongEnoughForClassicPerimeters) {
+    const double pi = 3.14159265358979;
+    const std::vector<std::pair<const char*, Mesh>> roofs = {
+        {"climb 0.3", bent_roof([](double x, double) { return 1 + 0.3 * x / 3; })},
+        {"climb 0.45", bent_roof([](double x, double) { return 1 + 0.45 * x / 3; })},
+        {"slopes 0.3, 0.3", bent_roof([](double x, double y) { return 1 + 0.3 * x / 3 + 0.3 * y / 3; })},
+        {"stepped ramp", bent_roof([](double x, double y) { return 1 + 0.21 * (20 - x) / 20 + 0.02 * y; }, true)},
+        {"vault", bent_roof([&](double x, double) { return 1 + 0.5 * std::sin(pi * x / 20); })},
+        {"wavy bore", bent_roof([&](double x, double y) { return 1 + 0.037 * x + 0.21 * std::sin(pi * y / 13) + 0.05 * std::cos(x); })},
+    };
+    for (const auto& [name, roof] : roofs) {
+        Walled w = walled(roof);
+        ASSERT_FALSE(w.ceilings.walls.empty()) << name << ": not vacuous";
+        std::string where;
+        EXPECT_GE(shortest_stretch(w.ceilings.walls, w.p, &where), 1.0) << name << ": " << where;
+        expect_walls_hold_what_they_take(w, name);
+    }
+}
+
+// The rule itself (printable_tops) on the wheel's row: 4 and 2.5 mm pieces with tops at 0.924 mm,
+// then 0.5 mm pieces at 0.98, 1.086 and 1.278 up to the row's end. The end piece comes down to
+// 1.086, where it and its neighbour make 1 mm, twice their thickness; the rest stand as they were.
+// A join whose end lies in the end piece and reaches as high keeps it (a slicer prints the two as
+// one line turning); a short piece that would keep under a layer is not built.
+TEST(Ceilings, AShortPieceOverItsNeighboursComesDownToWhereItPrints) {
+    Params p;
+    auto row = [](std::vector<std::pair<double, double>> pieces) {  // (length, top) from y = 0 on
+        std::vector<CeilingWall> out;
+        double y = 0;
+        for (auto [length, top] : pieces) out.push_back({{0, y, 0}, {0, y + length, 0}, 0, top, false, 0.5}), y += length;
+        return out;
+    };
+    std::vector<CeilingWall> walls = printable_tops(row({{4, 0.924}, {2.5, 0.924}, {0.5, 0.98}, {0.5, 1.086}, {0.5, 1.278}}), p);
+    ASSERT_EQ(walls.size(), 5u);
+    for (std::size_t i : {0, 1}) EXPECT_DOUBLE_EQ(walls[i].top, 0.924);
+    EXPECT_DOUBLE_EQ(walls[2].top, 0.98);
+    EXPECT_DOUBLE_EQ(walls[3].top, 1.086);
+    EXPECT_DOUBLE_EQ(walls[4].top, 1.086);
+    EXPECT_GE(shortest_stretch(walls, p), 1.0);
+    // A lone short piece in the middle of a row comes down to its higher neighbour.
+    walls = printable_tops(row({{2, 1.0}, {0.5, 1.4}, {2, 1.2}}), p);
+    EXPECT_DOUBLE_EQ(walls[1].top, 1.2);
+    // A join ending in the end piece, as high: the two make an L (1.45 mm of wall), left as they are.
+    std::vector<CeilingWall> joined = row({{4, 0.924}, {0.5, 1.278}});
+    joined.push_back({{0, 4.25, 0}, {2.864, 4.25, 0}, 0, 1.5, true, 0.5});
+    walls = printable_tops(joined, p);
+    EXPECT_DOUBLE_EQ(walls[1].top, 1.278);
+    // The hybrid's (feet on tips): a short piece standing over its neighbours by nearly its own
+    // height would keep half a layer: it is not built, and its neighbours stay as they were.
+    std::vector<CeilingWall> hung = row({{2, 5.0}, {0.5, 6.1}, {2, 5.2}});
+    for (CeilingWall& c : hung) c.bottom = c.top - 1.0, c.on_tree = true;
+    walls = printable_tops(hung, p);
+    ASSERT_EQ(walls.size(), 2u);
+    EXPECT_DOUBLE_EQ(walls[0].top, 5.0);
+    EXPECT_DOUBLE_EQ(walls[1].top, 5.2);
+    // Pieces long enough on their own are never touched.
+    walls = printable_tops(row({{1, 1.0}, {1, 1.4}, {1, 1.0}}), p);
+    EXPECT_DOUBLE_EQ(walls[1].top, 1.4);
 }
