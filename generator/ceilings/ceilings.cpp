@@ -15,6 +15,21 @@
 
 namespace cs {
 
+namespace {
+
+// Horizontal distance from x to the centre line of piece w.
+double to_centre_line(const Vec3& x, const CeilingWall& w) { return horizontal_point_segment_distance(x, w.from, w.to); }
+
+// Does an end of u lie within `reach` of v's centre line, or an end of v within it of u's? Pieces
+// are segments in a plane, so where two come nearest an end of one is nearest: the slicer's outline
+// of pieces within their half thicknesses of each other is one.
+bool an_end_within(const CeilingWall& u, const CeilingWall& v, double reach) {
+    return to_centre_line(u.from, v) <= reach || to_centre_line(u.to, v) <= reach || to_centre_line(v.from, u) <= reach ||
+           to_centre_line(v.to, u) <= reach;
+}
+
+}  // namespace
+
 double wall_line_seconds(const SlicerRoute& r, double length, double height, double thickness, const Params& p) {
     return height / p.layer_height * line_route_seconds(r, length, thickness);
 }
@@ -27,13 +42,7 @@ WallsPrinted walls_printed(const SlicerRoute& r, const std::vector<CeilingWall>&
     // inside the rows it joins), and the slicer's outline of the two is one.
     constexpr double kMeet = 1e-3;
     auto touch = [](const CeilingWall& u, const CeilingWall& v) {
-        const double reach = 0.5 * (u.thickness + v.thickness) + kMeet;
-        auto near_line = [&](const Vec3& e, const CeilingWall& w) {
-            const double dx = w.to.x - w.from.x, dy = w.to.y - w.from.y, ll = dx * dx + dy * dy;
-            const double t = ll > 0 ? std::clamp(((e.x - w.from.x) * dx + (e.y - w.from.y) * dy) / ll, 0.0, 1.0) : 0.0;
-            return std::hypot(e.x - w.from.x - t * dx, e.y - w.from.y - t * dy) <= reach;
-        };
-        return near_line(u.from, v) || near_line(u.to, v) || near_line(v.from, u) || near_line(v.to, u);
+        return an_end_within(u, v, 0.5 * (u.thickness + v.thickness) + kMeet);
     };
     struct Pair {
         std::size_t a, b;
@@ -1150,19 +1159,12 @@ std::size_t islands(const std::vector<CeilingWall>& pieces) {
         while (parent[i] != i) i = parent[i] = parent[parent[i]];
         return i;
     };
-    auto point_to_segment = [](const Vec3& x, const Vec3& a, const Vec3& b) {
-        const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
-        const double t = l2 > 0 ? std::clamp(((x.x - a.x) * dx + (x.y - a.y) * dy) / l2, 0.0, 1.0) : 0.0;
-        return std::hypot(x.x - a.x - t * dx, x.y - a.y - t * dy);
-    };
     std::size_t n = pieces.size();
     for (std::size_t i = 0; i < pieces.size(); ++i)
         for (std::size_t j = i + 1; j < pieces.size(); ++j) {
             const CeilingWall &u = pieces[i], &v = pieces[j];
-            const double touch = 0.5 * (u.thickness + v.thickness) + 1e-6;  // segments in a plane: an end is nearest
-            const double d = std::min({point_to_segment(u.from, v.from, v.to), point_to_segment(u.to, v.from, v.to),
-                                       point_to_segment(v.from, u.from, u.to), point_to_segment(v.to, u.from, u.to)});
-            if (d <= touch && root(i) != root(j)) parent[root(i)] = root(j), --n;
+            if (an_end_within(u, v, 0.5 * (u.thickness + v.thickness) + 1e-6) && root(i) != root(j))
+                parent[root(i)] = root(j), --n;
         }
     return n;
 }
@@ -1456,13 +1458,10 @@ std::vector<CeilingWall> printable_tops(std::vector<CeilingWall> pieces, const P
     // Lengths are sums of station distances: two 0.5 mm stations are exactly long enough
     // (measured), and may come out a rounding short of it.
     constexpr double kRounding = 1e-6;
-    auto flat = [](const Vec3& x) { return Vec3{x.x, x.y, 0}; };
     auto length = [](const CeilingWall& w) { return horizontal_distance(w.from, w.to); };
     // Pieces touch where an end of one lies in the other's footprint: end to end along a row,
     // a join's end inside the row it joins.
-    auto within = [&](const Vec3& x, const CeilingWall& w) {
-        return point_segment_distance(flat(x), flat(w.from), flat(w.to)) <= 0.5 * w.thickness + kRounding;
-    };
+    auto within = [&](const Vec3& x, const CeilingWall& w) { return to_centre_line(x, w) <= 0.5 * w.thickness + kRounding; };
     auto touch = [&](const CeilingWall& a, const CeilingWall& b) {
         return within(a.from, b) || within(a.to, b) || within(b.from, a) || within(b.to, a);
     };

@@ -53,6 +53,13 @@ inline double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b
     return distance(p, a + ab * t);
 }
 
+// The same in plan: the horizontal distance from p to segment ab, heights ignored.
+inline double horizontal_point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+    const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
+    const double t = l2 > 0 ? std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / l2, 0.0, 1.0) : 0.0;
+    return std::hypot(p.x - a.x - t * dx, p.y - a.y - t * dy);
+}
+
 // Degrees to radians and back: parameters and reports speak degrees, <cmath> radians. Written
 // as `deg * pi / 180` (not `deg * (pi / 180)`): the two differ in the last bit for some angles,
 // and every stage converts the same way so a threshold means the same everywhere.
