@@ -15,10 +15,11 @@
 //     regions, rows, joins, tops  as for walls (lay_out_ceilings), the floor of every station
 //               `hybrid_height` under its top, where the fall below leaves room for a tip and a
 //               strut (hybrid_floor)
-//     pieces    each flat piece cut into pieces as long as `check` still finds a long top (a
-//               contact along it), each standing on one tip at the middle of its foot: `check`
-//               grounds a solid by its foot's middle; the printer bridges the foot from tip to
-//               tip (pieces at most twice that long, under 8 mm at the default sampling)
+//     pieces    each flat piece cut into as few pieces as the printer bridges, each at least as
+//               long as `check` still finds a long top (a contact along it) and under twice that
+//               (under 7.5 mm at the default sampling), each standing on one tip at the middle of
+//               its foot: `check` grounds a solid by its foot's middle; the printer bridges the
+//               foot from tip to tip. Fewer pieces, fewer feet: each is a tip of the tree
 //     feet      a piece whose tip does not fit (the model too near) is not built
 //     choice    per region by core/slicer_time: the pieces' lines over their height plus the tree
 //               for the samples they leave and their feet, against the region's own tree, on
@@ -29,8 +30,8 @@
 //               dearer on Cura, and the whole 2 % cheaper with it)
 //
 // Example: a 30 x 10 mm roof 20 mm over a slope, hybrid_height 3, span 3.4: 4 rows of 3 mm walls
-// under it, cut into pieces ~3.7-7 mm long, ~20 feet; the tree grows from those instead of ~48
-// samples.
+// under it, each row cut into 5 pieces 6 mm long, with the 3 joins 23 feet; the tree grows from
+// those instead of ~48 samples.
 #pragma once
 
 #include <functional>
