@@ -73,6 +73,31 @@ TEST(Hybrid, ShortWallsHangUnderTheCeilingEachOnOneFoot) {
     }
 }
 
+// Each foot is a tip of the tree, an island on every layer below it, so a flat piece is cut into as
+// few pieces as the printer bridges: one piece fewer would make them at least twice what `check`
+// finds long (each piece's foot bridged from tip to tip). The pieces of one cut follow each other end
+// to end, equally long, under one top.
+TEST(Hybrid, AFlatPieceIsCutIntoTheFewestPiecesThePrinterBridges) {
+    Hybrid h = hybrid(high_deck(), 3);
+    ASSERT_FALSE(h.hybrid.walls.empty());
+    const double reach = coverage_reach(h.p.sampling_distance);
+    const auto& w = h.hybrid.walls;
+    auto length = [](const CeilingWall& c) { return horizontal_distance(c.from, c.to); };
+    std::size_t cuts = 0;
+    for (std::size_t i = 0; i < w.size();) {
+        std::size_t j = i + 1;  // the run of pieces continuing w[i]'s cut
+        while (j < w.size() && w[j].from == w[j - 1].to && w[j].top == w[i].top && std::abs(length(w[j]) - length(w[i])) < 1e-9) ++j;
+        const std::size_t n = j - i;
+        if (n >= 2) {
+            ++cuts;
+            const double bound = 2 * 1.05 * std::max(2 * reach, 3 * w[i].thickness);
+            EXPECT_GE(n * length(w[i]) / (n - 1), bound - 1e-9) << n << " pieces of " << length(w[i]) << " mm";
+        }
+        i = j;
+    }
+    EXPECT_GT(cuts, 0u);  // the deck's rows are longer than one piece
+}
+
 // The whole structure, grown as the pipeline grows it: the tree carries every foot, and `check`
 // passes it judged by its own geometry (the pieces grounded on their tips, their tops the deck's
 // contacts; without the pieces the deck is not covered).
