@@ -30,6 +30,8 @@ bool an_end_within(const CeilingWall& u, const CeilingWall& v, double reach) {
 
 }  // namespace
 
+double long_top(const Params& p, double thickness) { return std::max(2 * coverage_reach(p.sampling_distance), 3 * thickness); }
+
 double wall_line_seconds(const SlicerRoute& r, double length, double height, double thickness, const Params& p) {
     return height / p.layer_height * line_route_seconds(r, length, thickness);
 }
@@ -664,10 +666,8 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
 // over it, until it is as long as it is thick, while its floor stays flat (a piece may not hang over a
 // lower floor). One that cannot grow so long is not built: its samples stay with the tree
 // (the walls' contacts are found on the pieces built).
-// `check` finds a wall's top long (a contact along its length, README "check") from two coverage
-// reaches and three times its thickness; within kUnsureTop of that bound it may be judged either
-// way (`check`'s lattice reach is coverage_reach rounded up).
-double long_top(const Params& p, double thickness) { return std::max(2 * coverage_reach(p.sampling_distance), 3 * thickness); }
+// Within kUnsureTop of long_top `check` may judge a top either way (its lattice reach is
+// coverage_reach rounded up).
 constexpr double kUnsureTop = 1.02;
 
 // A piece shorter than a long top holds the ceiling at its middle only (wall_contacts): a faceted

@@ -36,7 +36,7 @@ std::vector<CeilingWall> cut_at_feet(const ModelQuery& q, const std::vector<Ceil
     std::vector<CeilingWall> out;
     for (const CeilingWall& w : pieces) {
         const double length = horizontal_distance(w.from, w.to);
-        const double shortest = kSurelyLong * std::max(2 * coverage_reach(p.sampling_distance), 3 * w.thickness);
+        const double shortest = kSurelyLong * long_top(p, w.thickness);
         const int n = static_cast<int>(std::floor(length / (2 * shortest))) + 1;
         for (int k = 0; k < n; ++k) {
             CeilingWall c = w;

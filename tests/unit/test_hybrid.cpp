@@ -57,7 +57,6 @@ TEST(Hybrid, ShortWallsHangUnderTheCeilingEachOnOneFoot) {
     EXPECT_GT(h.hybrid.covered, h.samples.samples.size() / 2);
     EXPECT_EQ(h.hybrid.covered + h.hybrid.rest.size(), h.samples.samples.size());
     ASSERT_EQ(h.hybrid.feet.size(), h.hybrid.walls.size());
-    const double reach = coverage_reach(h.p.sampling_distance);
     for (std::size_t i = 0; i < h.hybrid.walls.size(); ++i) {
         const CeilingWall& w = h.hybrid.walls[i];
         EXPECT_NEAR(w.top, 20 - h.p.gap, 1e-6);               // a gap under the deck
@@ -67,9 +66,9 @@ TEST(Hybrid, ShortWallsHangUnderTheCeilingEachOnOneFoot) {
         EXPECT_NEAR(f.x, 0.5 * (w.from.x + w.to.x), 1e-9);
         EXPECT_NEAR(f.y, 0.5 * (w.from.y + w.to.y), 1e-9);
         // A piece is either short (judged at its middle) or surely long (a contact along its top).
-        const double length = horizontal_distance(w.from, w.to), long_top = std::max(2 * reach, 3 * w.thickness);
-        EXPECT_TRUE(length < 1.02 * long_top || length >= 1.05 * long_top) << length;
-        EXPECT_LT(length, 2 * 1.05 * long_top + 1e-9);  // the printer bridges its foot from tip to tip
+        const double length = horizontal_distance(w.from, w.to), top = long_top(h.p, w.thickness);
+        EXPECT_TRUE(length < 1.02 * top || length >= 1.05 * top) << length;
+        EXPECT_LT(length, 2 * 1.05 * top + 1e-9);  // the printer bridges its foot from tip to tip
     }
 }
 
@@ -80,7 +79,6 @@ TEST(Hybrid, ShortWallsHangUnderTheCeilingEachOnOneFoot) {
 TEST(Hybrid, AFlatPieceIsCutIntoTheFewestPiecesThePrinterBridges) {
     Hybrid h = hybrid(high_deck(), 3);
     ASSERT_FALSE(h.hybrid.walls.empty());
-    const double reach = coverage_reach(h.p.sampling_distance);
     const auto& w = h.hybrid.walls;
     auto length = [](const CeilingWall& c) { return horizontal_distance(c.from, c.to); };
     std::size_t cuts = 0;
@@ -90,7 +88,7 @@ TEST(Hybrid, AFlatPieceIsCutIntoTheFewestPiecesThePrinterBridges) {
         const std::size_t n = j - i;
         if (n >= 2) {
             ++cuts;
-            const double bound = 2 * 1.05 * std::max(2 * reach, 3 * w[i].thickness);
+            const double bound = 2 * 1.05 * long_top(h.p, w[i].thickness);
             EXPECT_GE(n * length(w[i]) / (n - 1), bound - 1e-9) << n << " pieces of " << length(w[i]) << " mm";
         }
         i = j;
