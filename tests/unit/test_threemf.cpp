@@ -177,6 +177,30 @@ TEST(ThreeMF, PrusaSupportsAreAnNProfileVolumeAndASolidVolumeEachWithItsThinWall
         if (f.name == "part.prusa.3mf") EXPECT_EQ(unzip(f.content()), files);
 }
 
+// #32: PrusaSlicer 2.5 builds a volume's print region from the volume's settings, but keeps only
+// the keys of its PrintRegionConfig there (PrintObject.cpp apply_to_print_region_config); any
+// other key on a volume (seam_position, perimeter_generator and the rest of PrintObjectConfig, or
+// the extruder's retract_before_travel) is dropped without a word. So every key we write must be
+// one of these, or it does nothing. The list: PrintRegionConfig in PrusaSlicer tag version_2.5.0,
+// src/libslic3r/PrintConfig.hpp.
+TEST(ThreeMF, PrusaSupportVolumeSettingsAreAllPerRegionKeysOfPrusaSlicer25) {
+    const std::set<std::string> region_keys = {
+        "bridge_angle", "bottom_fill_pattern", "bottom_solid_layers", "bottom_solid_min_thickness",
+        "bridge_flow_ratio", "bridge_speed", "ensure_vertical_shell_thickness", "external_perimeter_extrusion_width",
+        "external_perimeter_speed", "external_perimeters_first", "extra_perimeters", "fill_angle", "fill_density",
+        "fill_pattern", "fuzzy_skin", "fuzzy_skin_thickness", "fuzzy_skin_point_dist", "gap_fill_enabled",
+        "gap_fill_speed", "infill_anchor", "infill_anchor_max", "infill_extruder", "infill_extrusion_width",
+        "infill_every_layers", "infill_overlap", "infill_speed", "ironing", "ironing_type", "ironing_flowrate",
+        "ironing_spacing", "ironing_speed", "overhangs", "perimeter_extruder", "perimeter_extrusion_width",
+        "perimeter_speed", "perimeters", "small_perimeter_speed", "solid_infill_below_area", "solid_infill_extruder",
+        "solid_infill_extrusion_width", "solid_infill_every_layers", "solid_infill_speed", "thin_walls",
+        "top_fill_pattern", "top_infill_extrusion_width", "top_solid_layers", "top_solid_min_thickness",
+        "top_solid_infill_speed", "wipe_into_infill"};
+    for (PrusaSupportVolume v : {PrusaSupportVolume::NProfile, PrusaSupportVolume::Solid})
+        for (const auto& [key, value] : prusa_support_volume_settings(Params{}, v))
+            EXPECT_TRUE(region_keys.count(key)) << key << " is not a per-volume setting in PrusaSlicer 2.5";
+}
+
 // #11: the package is deflated by a maintained library; the same input gives the same bytes.
 TEST(ThreeMF, EntriesAreDeflatedAndTheSameInputGivesTheSameBytes) {
     Mesh model = box({0, 0, 0}, {10, 10, 10});
