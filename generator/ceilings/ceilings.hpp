@@ -76,6 +76,12 @@ struct CeilingWall {
     bool join = false;  // joins two rows (it ends inside the rows it joins)
     double thickness = 0.5;
     bool on_tree = false;  // the hybrid's (ceilings/hybrid.hpp): its foot stands on a tip of the tree
+    // Slabs (ceilings/slabs.hpp): a block filling the space between two neighbouring rows, so that
+    // the two and it are one solid whose outline CuraEngine prints (each row once, not as a loop).
+    // PrusaSlicer prints a row once anyway, and retracts on each travel inside our volume, so the
+    // .prusa.3mf leaves the bridges out.
+    bool bridge = false;
+    double row_thickness = 0;  // a bridge's: the thickness of the rows it lies between
 };
 
 // What a tree grown from some samples alone would give a slicer to print, counted as

@@ -24,4 +24,9 @@ double line_route_seconds(const SlicerRoute& r, double mm, double width) {
     return passes * stroke_seconds(mm, r.turn_speed, r.print_speed, r.acceleration);
 }
 
+double outline_route_seconds(const SlicerRoute& r, double length, double width) {
+    return 2 * (stroke_seconds(length, r.turn_speed, r.print_speed, r.acceleration) +
+                stroke_seconds(width, r.turn_speed, r.print_speed, r.acceleration));
+}
+
 }  // namespace cs

@@ -59,6 +59,10 @@ double tree_route_seconds(const SlicerRoute& r, double island_layers, double out
 // passes (more where it is wider than one pass), each a trapezoid from and to the turn speed.
 double line_route_seconds(const SlicerRoute& r, double mm, double width);
 
+// Seconds one layer of a support area's outline adds on a route, for an area `length` by `width`
+// (a slab of two rows, ceilings/slabs.hpp): drawn once, its four sides each a trapezoid.
+double outline_route_seconds(const SlicerRoute& r, double length, double width);
+
 // Seconds a straight move of `mm` takes that starts and ends at `end_speed` and cruises at `speed`
 // where it is long enough, accelerating at `acceleration` (the planner's trapezoid).
 double stroke_seconds(double mm, double end_speed, double speed, double acceleration);

@@ -28,6 +28,10 @@ struct Supports {
     double volume = 0;         // of the support solid, overlaps at joints counted once (solid_volume), mm^3
     double bodies_volume = 0;  // the bodies' volumes added up, overlaps counted twice, mm^3
                                // (both add the walls' own; the ends of joins inside rows count twice)
+    // The slabs' bridges (ceilings/slabs.hpp), counted in `volume`: the slicers leave them hollow
+    // (CuraEngine prints a slab's outline under our profile; the .prusa.3mf has none), so what is
+    // printed is volume - bridges_volume.
+    double bridges_volume = 0;
     double length = 0;  // total strut length (mm)
     SlicerCost slicer_cost;  // estimate_slicer_cost of the sized tree, computed once per tree, plus the walls
     WallsPrinted walls_cura, walls_prusa;  // the walls' part of it per route (ceilings/ceilings.hpp)

@@ -59,6 +59,7 @@ json supports_json(const Supports& s, const Params& p) {
             {"ceiling_walls_on_tree", std::count_if(s.walls.begin(), s.walls.end(), [](const CeilingWall& w) { return w.on_tree; })},
             {"total_strut_length_mm", s.length},
             {"support_volume_mm3", s.volume},
+            {"bridges_volume_mm3", s.bridges_volume},
             {"bodies_volume_mm3", s.bodies_volume},
             {"worst_length_to_width", s.sized.worst_length_to_width},
             {"strength_violations", s.sized.strength_violations},
@@ -169,7 +170,8 @@ std::string report_json(const Result& r, const Job& job) {
                       {"top_up_samples", r.samples.topped_up}};
     j["supports"] = supports_json(r.supports, job.params);
     j["columns_baseline"] = supports_json(r.columns, job.params);
-    double saved_v = r.columns.volume > 0 ? 1 - r.supports.volume / r.columns.volume : 0;
+    // What is printed: the slabs' bridges stay hollow (Supports::bridges_volume).
+    double saved_v = r.columns.volume > 0 ? 1 - (r.supports.volume - r.supports.bridges_volume) / r.columns.volume : 0;
     double saved_l = r.columns.length > 0 ? 1 - r.supports.length / r.columns.length : 0;
     j["saving_vs_columns"] = {{"volume", saved_v}, {"length", saved_l}};
     if (job.timings) {  // wall-clock times differ from run to run: --no-timings leaves them out
@@ -208,7 +210,9 @@ std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& 
     files.push_back({name + ".prusa.3mf", [name, &model, &built, &p, model_lines] {
                          // The ceiling walls (0.5 mm fins) print as thin walls, like the N-profile's.
                          Mesh struts = bodies_mesh(built.bodies, p.wall_thickness, Profile::N);
-                         for (const CeilingWall& w : built.walls) append(struts, wall_mesh(w));
+                         // Without the slabs' bridges (ceilings/slabs.hpp): PrusaSlicer prints a wall once.
+                         for (const CeilingWall& w : built.walls)
+                             if (!w.bridge) append(struts, wall_mesh(w));
                          const Mesh solid = bodies_mesh(built.bodies, p.wall_thickness, Profile::Square);
                          return encode_3mf_prusa(
                              name, {{name + " model", model, {}, model_lines()},
@@ -295,7 +299,7 @@ void write_outputs(const std::string& dir, const std::vector<OutputFile>& files)
         if (!b.empty()) ::unlink(b.c_str());
 }
 
-double support_grams(const Supports& s, const Params& p) { return s.volume / 1000.0 * p.filament_density; }
+double support_grams(const Supports& s, const Params& p) { return (s.volume - s.bridges_volume) / 1000.0 * p.filament_density; }
 
 std::string human_summary(const Result& r, const Job& job, const std::string& dir) {
     const auto& st = r.supports.sized.tree.stats;
@@ -312,7 +316,7 @@ std::string human_summary(const Result& r, const Job& job, const std::string& di
     const SlicerCost& cost = r.supports.slicer_cost;  // estimated once, by the pipeline
     s += fmt::format("  support     {:.2f} g of filament ({:.0f} mm^3 at {:g} g/cm^3), about {:.1f} min of printing "
                      "added (estimate: Cura {:.1f}, PrusaSlicer {:.1f})\n",
-                     support_grams(r.supports, p), r.supports.volume, p.filament_density, cost.seconds / 60,
+                     support_grams(r.supports, p), r.supports.volume - r.supports.bridges_volume, p.filament_density, cost.seconds / 60,
                      cost.cura_seconds / 60, cost.prusa_seconds / 60);
     s += fmt::format("              {:.0f} mm of struts\n", r.supports.length);
     double total = 0;

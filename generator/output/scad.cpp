@@ -201,7 +201,7 @@ std::string wall_data(const Supports& sp) {
     Rows walls;
     for (size_t i = 0; i < sp.walls.size(); ++i) {
         const CeilingWall& w = sp.walls[i];
-        walls.push_back({std::to_string(i) + (w.join ? " join" : " row") + (w.on_tree ? " on the tree" : ""),
+        walls.push_back({std::to_string(i) + (w.bridge ? " bridge" : w.join ? " join" : " row") + (w.on_tree ? " on the tree" : ""),
                          fmt::format("[[{}, {}], [{}, {}], {}, {}, {}]", num(w.from.x), num(w.from.y), num(w.to.x), num(w.to.y),
                                      num(w.bottom), num(w.top), num(w.thickness))});
     }
@@ -209,6 +209,9 @@ std::string wall_data(const Supports& sp) {
                     "// model), z of the top (a gap under the ceiling), thickness (`wall`, or the strength rule's for its height)]\n";
     if (std::any_of(sp.walls.begin(), sp.walls.end(), [](const CeilingWall& w) { return w.on_tree; }))
         s += "// A piece \"on the tree\" (the hybrid under a high ceiling) stands on the tip under the middle of its foot.\n";
+    if (std::any_of(sp.walls.begin(), sp.walls.end(), [](const CeilingWall& w) { return w.bridge; }))
+        s += "// A \"bridge\" fills the space between two neighbouring rows: the three are one slab, whose outline Cura\n"
+             "// prints with the .curaprofile (no support infill), each row once instead of as a loop.\n";
     return s + record_list("cs_walls", walls) + "\n";
 }
 

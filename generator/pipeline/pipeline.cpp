@@ -18,6 +18,7 @@
 #include "core/sha256.hpp"
 #include "core/param_table.hpp"
 #include "core/rules.hpp"
+#include "ceilings/slabs.hpp"
 #include "mesh/mesh_io.hpp"
 #include "render/render.hpp"
 #include "query/model_query.hpp"
@@ -270,6 +271,7 @@ Supports finish_supports(SizedTree grown, const Params& p, const std::vector<int
     for (const auto& w : s.walls) {
         const Mesh m = wall_mesh(w);
         s.volume += signed_volume(m);
+        if (w.bridge) s.bridges_volume += signed_volume(m);
         append(s.mesh, m);
     }
     s.bodies_volume = signed_volume(s.mesh);  // separate closed shells: their volumes add
@@ -771,6 +773,8 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         return std::move(fewer->tree);
     });
     // The user's omitted struts are numbered in the final tree (the one the .scad shows).
+    // Neighbouring rows as slabs: the same lines under the ceiling, each drawn once by CuraEngine.
+    ceilings.walls = join_rows_into_slabs(*query, std::move(ceilings.walls), p);
     r.supports = sw.time("struts", progress, [&] {
         return finish_supports(std::move(grown), p, job.edits.omit_struts, std::move(ceilings.walls));
     });

@@ -181,7 +181,9 @@ TEST_P(SharedModel, StrictCheckPassesWithFullCoverageAndTreeBeatsColumns) {
     expect_sound(g, k, file);
     if (k.fused == 0 && k.penetrating == 0 && k.uncovered == 0) EXPECT_TRUE(c.ok()) << c.summary();
     expect_no_slack(file, false, measured_shortfall(c, g.report));
-    double tree = g.report["supports"]["support_volume_mm3"], columns = g.report["columns_baseline"]["support_volume_mm3"];
+    // What is printed: the slabs' bridges are hollow in both slicers' files (ceilings/slabs.hpp).
+    double tree = g.report["supports"]["support_volume_mm3"].get<double>() - g.report["supports"]["bridges_volume_mm3"].get<double>(),
+           columns = g.report["columns_baseline"]["support_volume_mm3"];
     EXPECT_GT(tree, 0);
     EXPECT_LT(tree, columns) << "tree support should use less material than plain columns";
 }

@@ -1,0 +1,154 @@
+// ceilings/slabs: neighbouring rows joined into slabs that CuraEngine prints as one outline.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "ceilings/ceilings.hpp"
+#include "ceilings/slabs.hpp"
+#include "check/check.hpp"
+#include "core/rules.hpp"
+#include "core/slicer_time.hpp"
+#include "overhang/overhang.hpp"
+#include "pipeline/pipeline.hpp"
+#include "query/model_query.hpp"
+#include "shapes.hpp"
+#include "support.hpp"
+
+using namespace cs;
+
+namespace {
+
+// A lid: a 40 x 30 x 2 plate 3 mm over the bed (z 3..5) on four 2 x 2 corner posts; `post`: one
+// more, 1 x 1 mm, from the bed to the plate, its corner at post_at.
+Mesh low_lid(const Vec3* post_at = nullptr) {
+    std::vector<double> xs{-20, -18, 18, 20}, ys{-15, -13, 13, 15};
+    if (post_at) xs.push_back(post_at->x), xs.push_back(post_at->x + 1), ys.push_back(post_at->y), ys.push_back(post_at->y + 1);
+    std::sort(xs.begin(), xs.end()), std::sort(ys.begin(), ys.end());
+    test::CellGrid g(xs, ys, {0, 3, 5});
+    for (double x : {-20.0, 18.0})
+        for (double y : {-15.0, 13.0}) g.fill({x, y, 0}, {x + 2, y + 2, 3});
+    if (post_at) g.fill({post_at->x, post_at->y, 0}, {post_at->x + 1, post_at->y + 1, 3});
+    g.fill({-20, -15, 3}, {20, 15, 5});
+    return g.mesh();
+}
+
+// Every region gets its walls (a tree priced out of reach), as in test_ceilings.cpp.
+TreeCount dear_tree(const std::vector<Sample>& samples) { return {1000.0 * samples.size(), 0, 0}; }
+
+std::vector<CeilingWall> lid_walls(const Mesh& model, const Params& p) {
+    ModelQuery q(model);
+    const OverhangSamples s = sample_overhangs(model, {p.critical_angle, p.sampling_distance, p.layer_height, touching_space(p)}, &q);
+    return support_ceilings(q, s.samples, p, dear_tree, {}, 1.0).walls;
+}
+
+// The supports mesh as finish_supports builds it from walls: each piece a box.
+Mesh walls_mesh(const std::vector<CeilingWall>& walls) {
+    Mesh m;
+    for (const auto& w : walls) append(m, wall_mesh(w));
+    return m;
+}
+
+Vec3 middle(const CeilingWall& w) { return (w.from + w.to) * 0.5; }
+
+// Does the point lie within w's footprint (grown by `margin`)?
+bool in_footprint(const Vec3& x, const CeilingWall& w, double margin = 0) {
+    const Vec3 d = normalized(Vec3{w.to.x - w.from.x, w.to.y - w.from.y, 0});
+    const Vec3 m = middle(w);
+    const double along = (x.x - m.x) * d.x + (x.y - m.y) * d.y, across = -(x.x - m.x) * d.y + (x.y - m.y) * d.x;
+    return std::abs(along) <= 0.5 * horizontal_distance(w.from, w.to) + margin && std::abs(across) <= 0.5 * w.thickness + margin;
+}
+
+}  // namespace
+
+// The lid's meander: pairs of neighbouring rows get a bridge filling the space between them (the
+// same foot and top), reaching a hair into each, each row in one slab at most.
+TEST(Slabs, ALowLidsNeighbouringRowsPairIntoSlabs) {
+    const Params p;
+    const Mesh model = low_lid();
+    const std::vector<CeilingWall> before = lid_walls(model, p);
+    ASSERT_GE(before.size(), 5u);
+    ModelQuery q(model);
+    const std::vector<CeilingWall> after = join_rows_into_slabs(q, before, p);
+    ASSERT_GT(after.size(), before.size());
+    // What was there stays, in its order and place.
+    for (std::size_t i = 0; i < before.size(); ++i) {
+        EXPECT_EQ(after[i].from, before[i].from);
+        EXPECT_EQ(after[i].to, before[i].to);
+        EXPECT_FALSE(after[i].bridge);
+    }
+    std::vector<int> slabs_of_row(before.size(), 0);
+    for (std::size_t k = before.size(); k < after.size(); ++k) {
+        const CeilingWall& b = after[k];
+        ASSERT_TRUE(b.bridge);
+        EXPECT_NEAR(b.thickness, p.ceiling_span - b.row_thickness, p.ceiling_span * 0.1);
+        EXPECT_EQ(b.bottom, 0);  // the lid's walls stand on the bed
+        // Its two rows: parallel, reached into (by a hair, at most 0.02 mm) on
+        // either side, along its whole length.
+        int sides = 0;
+        for (std::size_t i = 0; i < before.size(); ++i) {
+            const CeilingWall& r = before[i];
+            if (r.join || r.bottom != b.bottom || r.top != b.top) continue;
+            const Vec3 d = normalized(Vec3{b.to.x - b.from.x, b.to.y - b.from.y, 0}), n{-d.y, d.x, 0};
+            const double off = (middle(r).x - middle(b).x) * n.x + (middle(r).y - middle(b).y) * n.y;
+            const double into = 0.5 * (b.thickness + r.thickness) - std::abs(off);
+            if (into <= 0 || into > 0.02) continue;
+            if (!in_footprint(b.from + n * off, r, 1e-9) || !in_footprint(b.to + n * off, r, 1e-9)) continue;
+            ++sides, ++slabs_of_row[i];
+        }
+        EXPECT_EQ(sides, 2) << "bridge " << k;
+    }
+    for (int n : slabs_of_row) EXPECT_LE(n, 1);
+}
+
+// Cura draws a wall one line wide as a loop and a slab as its outline: the slabs' walls cost it
+// less; PrusaSlicer's file has no bridges and its price does not move.
+TEST(Slabs, SlabsCostCuraLessAndPrusaSlicerTheSame) {
+    const Params p;
+    const Mesh model = low_lid();
+    const std::vector<CeilingWall> before = lid_walls(model, p);
+    ModelQuery q(model);
+    const std::vector<CeilingWall> after = join_rows_into_slabs(q, before, p);
+    ASSERT_GT(after.size(), before.size());
+    EXPECT_LT(walls_seconds(kCuraRoute, after, p), 0.8 * walls_seconds(kCuraRoute, before, p));
+    EXPECT_NEAR(walls_seconds(kPrusaRoute, after, p), walls_seconds(kPrusaRoute, before, p), 1e-9);
+}
+
+// A post standing between two rows that would pair: no bridge comes within the side clearance of it.
+TEST(Slabs, NoBridgeWhereThePostStandsBetweenTwoRows) {
+    const Params p;
+    const Mesh plain = low_lid();
+    ModelQuery q0(plain);
+    const std::vector<CeilingWall> paired = join_rows_into_slabs(q0, lid_walls(plain, p), p);
+    const CeilingWall* first = nullptr;
+    for (const CeilingWall& w : paired)
+        if (w.bridge) first = first ? first : &w;
+    ASSERT_NE(first, nullptr);
+    // A 1 x 1 post in the bridge's middle (it falls between the two rows: the bridge is 2.9 wide).
+    const Vec3 at = middle(*first) - Vec3{0.5, 0.5, 0};
+    const Mesh with_post = low_lid(&at);
+    const std::vector<CeilingWall> walls = lid_walls(with_post, p);
+    ModelQuery q(with_post);
+    const std::vector<CeilingWall> after = join_rows_into_slabs(q, walls, p);
+    for (const CeilingWall& b : after)
+        if (b.bridge)
+            for (double dx : {0.0, 1.0})
+                for (double dy : {0.0, 1.0})
+                    EXPECT_FALSE(in_footprint(at + Vec3{dx, dy, 0}, b, tip_side_clearance(p) - 1e-6))
+                        << "bridge at " << middle(b).x << ", " << middle(b).y;
+}
+
+// The slabs are closed solids, and `check` passes the lid's walls with them.
+TEST(Slabs, TheSlabbedLidsWallsAreClosedAndPassCheck) {
+    const Params p;
+    const Mesh model = low_lid();
+    ModelQuery q(model);
+    const OverhangSamples s = sample_overhangs(model, {p.critical_angle, p.sampling_distance, p.layer_height, touching_space(p)}, &q);
+    const Ceilings c = support_ceilings(q, s.samples, p, dear_tree, {}, 1.0);
+    const std::vector<CeilingWall> walls = join_rows_into_slabs(q, c.walls, p);
+    for (const CeilingWall& w : walls) EXPECT_TRUE(is_closed_and_consistent(wall_mesh(w)));
+    Supports tree = build_supports(model, c.rest, p);
+    Mesh all = tree.mesh;
+    append(all, walls_mesh(walls));
+    const CheckResult r = check_supports(model, all, p, {});
+    EXPECT_TRUE(r.ok()) << r.summary();
+}
