@@ -57,6 +57,7 @@ json supports_json(const Supports& s, const Params& p) {
             {"ceiling_walls_on_model",
              std::count_if(s.walls.begin(), s.walls.end(), [](const CeilingWall& w) { return w.bottom > 0 && !w.on_tree; })},
             {"ceiling_walls_on_tree", std::count_if(s.walls.begin(), s.walls.end(), [](const CeilingWall& w) { return w.on_tree; })},
+            {"ceiling_bridges", std::count_if(s.walls.begin(), s.walls.end(), [](const CeilingWall& w) { return w.bridge; })},
             {"total_strut_length_mm", s.length},
             {"support_volume_mm3", s.volume},
             {"bridges_volume_mm3", s.bridges_volume},
@@ -199,8 +200,16 @@ std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& 
         if (--shared->uses_left == 0) shared->xml.reset();
         return xml;
     };
-    files.push_back({name + ".supported.stl", [&model, &supports] {
-                         return encode_stl({&model, &supports}, "clever-support: model + supports");
+    files.push_back({name + ".supported.stl", [&model, &supports, &built, &p] {
+                         // Printed as model geometry (walls, infill, top layers) a slab would be
+                         // filled: where there are bridges (ceilings/slabs.hpp) the supports go in
+                         // as a run builds them, bodies then walls, without the bridges.
+                         if (std::none_of(built.walls.begin(), built.walls.end(), [](const CeilingWall& w) { return w.bridge; }))
+                             return encode_stl({&model, &supports}, "clever-support: model + supports");
+                         Mesh unbridged = bodies_mesh(built.bodies, p.wall_thickness);
+                         for (const CeilingWall& w : built.walls)
+                             if (!w.bridge) append(unbridged, wall_mesh(w));
+                         return encode_stl({&model, &unbridged}, "clever-support: model + supports");
                      }});
     files.push_back({name + ".supports.stl", [&supports] { return encode_stl(supports, "clever-support: supports"); }});
     files.push_back({name + ".3mf", [name, &model, &supports, model_lines] {

@@ -202,16 +202,17 @@ std::string wall_data(const Supports& sp) {
     for (size_t i = 0; i < sp.walls.size(); ++i) {
         const CeilingWall& w = sp.walls[i];
         walls.push_back({std::to_string(i) + (w.bridge ? " bridge" : w.join ? " join" : " row") + (w.on_tree ? " on the tree" : ""),
-                         fmt::format("[[{}, {}], [{}, {}], {}, {}, {}]", num(w.from.x), num(w.from.y), num(w.to.x), num(w.to.y),
-                                     num(w.bottom), num(w.top), num(w.thickness))});
+                         fmt::format("[[{}, {}], [{}, {}], {}, {}, {}{}]", num(w.from.x), num(w.from.y), num(w.to.x), num(w.to.y),
+                                     num(w.bottom), num(w.top), num(w.thickness), w.bridge ? ", 1" : "")});
     }
     std::string s = "// Walls under low ceilings: [[x, y] from, [x, y] to, z of the foot (0: the bed, else a gap over the\n"
                     "// model), z of the top (a gap under the ceiling), thickness (`wall`, or the strength rule's for its height)]\n";
     if (std::any_of(sp.walls.begin(), sp.walls.end(), [](const CeilingWall& w) { return w.on_tree; }))
         s += "// A piece \"on the tree\" (the hybrid under a high ceiling) stands on the tip under the middle of its foot.\n";
     if (std::any_of(sp.walls.begin(), sp.walls.end(), [](const CeilingWall& w) { return w.bridge; }))
-        s += "// A \"bridge\" fills the space between two neighbouring rows: the three are one slab, whose outline Cura\n"
-             "// prints with the .curaprofile (no support infill), each row once instead of as a loop.\n";
+        s += "// A \"bridge\" (a sixth element, 1) fills the space between two neighbouring rows: the three are one slab,\n"
+             "// whose outline Cura prints with the .curaprofile (no support infill), each row once instead of as a loop;\n"
+             "// the .prusa.3mf and the .supported.stl leave the bridges out.\n";
     return s + record_list("cs_walls", walls) + "\n";
 }
 

@@ -70,6 +70,7 @@ std::vector<CeilingWall> walls_from_scad(const ScadValues& values) {
         wall.bottom = w[2].get<double>();
         wall.top = w[3].get<double>();
         wall.thickness = w[4].get<double>();
+        wall.bridge = w.size() > 5 && w[5].is_number() && w[5].get<double>() == 1;  // ceilings/slabs.hpp
         walls.push_back(wall);
     }
     return walls;
