@@ -8,11 +8,13 @@
 #include "check/check.hpp"
 #include "core/rules.hpp"
 #include "core/slicer_time.hpp"
+#include "edit/scad_values.hpp"
 #include "overhang/overhang.hpp"
 #include "pipeline/pipeline.hpp"
 #include "query/model_query.hpp"
 #include "shapes.hpp"
 #include "support.hpp"
+#include "view/view_tree.hpp"
 
 using namespace cs;
 
@@ -151,4 +153,22 @@ TEST(Slabs, TheSlabbedLidsWallsAreClosedAndPassCheck) {
     append(all, walls_mesh(walls));
     const CheckResult r = check_supports(model, all, p, {});
     EXPECT_TRUE(r.ok()) << r.summary();
+}
+
+// The .scad marks a bridge with a sixth element, 1, and reading it back (what `apply` builds the
+// .prusa.3mf and the .supported.stl from) keeps the mark: those files leave bridges out.
+TEST(Slabs, AScadsBridgeIsReadBackAsABridge) {
+    const ScadValues values = parse_scad_values(
+        "cs_walls = [\n"
+        "  /* 0 row */ [[0, 0], [5, 0], 0, 2.8, 0.5],\n"
+        "  /* 1 row */ [[0, 3.2], [5, 3.2], 0, 2.8, 0.5],\n"
+        "  /* 2 bridge */ [[0, 1.6], [5, 1.6], 0, 2.8, 2.72, 1]\n"
+        "];\n",
+        "slab.scad");
+    const std::vector<CeilingWall> walls = walls_from_scad(values);
+    ASSERT_EQ(walls.size(), 3u);
+    EXPECT_FALSE(walls[0].bridge);
+    EXPECT_FALSE(walls[1].bridge);
+    EXPECT_TRUE(walls[2].bridge);
+    EXPECT_DOUBLE_EQ(walls[2].thickness, 2.72);
 }
