@@ -511,6 +511,38 @@ TEST(ScadEdit, EditedScadRendersOnDebian2021AndOnManifold) {
 
 // A Customizer tweak reaches every file a slicer opens: `apply` renders the supports from the
 // edited .scad and rewrites the supports STLs and both 3MFs (the model and the report stay).
+// The tee in the default preset: its arms are low roofs, walls whose rows pair into slabs
+// (ceilings/slabs.hpp). Applied unchanged, the .scad's bridges are read back as bridges: the
+// .prusa.3mf and the .supported.stl still leave them out, and the grams are what is printed,
+// as a run's summary says (the render unites what touches, so a little less).
+TEST(ScadEdit, ApplyKeepsTheSlabsBridgesOutOfPrusaSlicersFileAndTheGrams) {
+    if (!have_openscad()) GTEST_SKIP() << "no OpenSCAD";
+    TempDir d;
+    write_stl(d / "tee.stl", t_shape());
+    const std::string out = d / "out";
+    ASSERT_EQ(cs(quote(d / "tee.stl") + " --orient keep -q --out " + quote(out)).code, 0);
+    const auto report = nlohmann::json::parse(read_text(out + "/tee.report.json"));
+    ASSERT_GT(report["supports"]["ceiling_bridges"].get<int>(), 0);
+    const double printed_g = (report["supports"]["support_volume_mm3"].get<double>() -
+                              report["supports"]["bridges_volume_mm3"].get<double>()) / 1000 * 1.24;
+    const Mesh supported_before = read_mesh(out + "/tee.supported.stl");
+    auto triangles_of = [](const std::string& package) {
+        std::vector<int> n;
+        for (const auto& v : elements(unzip(package)["Metadata/Slic3r_PE_model.config"], "volume"))
+            n.push_back(std::stoi(attribute(v, "lastid")) - std::stoi(attribute(v, "firstid")) + 1);
+        return n;
+    };
+    const auto grown = triangles_of(read_text(out + "/tee.prusa.3mf"));
+    const auto r = cs("apply " + quote(out + "/tee.scad"));
+    ASSERT_EQ(r.code, 0) << r.out;
+    EXPECT_EQ(triangles_of(read_text(out + "/tee.prusa.3mf")), grown);
+    EXPECT_EQ(read_mesh(out + "/tee.supported.stl").faces.size(), supported_before.faces.size());
+    std::smatch grams;
+    ASSERT_TRUE(std::regex_search(r.out, grams, std::regex(R"(supports now ([0-9.]+) g)"))) << r.out;
+    EXPECT_LE(std::stod(grams[1]), printed_g + 0.01) << r.out;
+    EXPECT_GE(std::stod(grams[1]), 0.9 * printed_g) << r.out;
+}
+
 TEST(ScadEdit, ApplyBringsATweakIntoTheSlicerFiles) {
     if (!have_openscad()) GTEST_SKIP() << "no OpenSCAD";
     TempDir d;
