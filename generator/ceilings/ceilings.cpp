@@ -65,7 +65,7 @@ WallsPrinted walls_printed(const SlicerRoute& r, const std::vector<CeilingWall>&
             const bool meet = horizontal_distance(u.from, v.from) < kMeet || horizontal_distance(u.from, v.to) < kMeet ||
                               horizontal_distance(u.to, v.from) < kMeet || horizontal_distance(u.to, v.to) < kMeet;
             const Vec3 du = direction(u), dv = direction(v);
-            pairs.push_back({a, b, meet && std::abs(du.x * dv.y - du.y * dv.x) < 1e-3 && u.thickness == v.thickness && !u.bridge && !v.bridge});
+            pairs.push_back({a, b, meet && std::abs(du.x * dv.y - du.y * dv.x) < 1e-3 && u.thickness == v.thickness});
         }
     double low = walls.front().bottom, high = walls.front().top;
     for (const CeilingWall& w : walls) low = std::min(low, w.bottom), high = std::max(high, w.top);

@@ -171,8 +171,7 @@ std::string report_json(const Result& r, const Job& job) {
                       {"top_up_samples", r.samples.topped_up}};
     j["supports"] = supports_json(r.supports, job.params);
     j["columns_baseline"] = supports_json(r.columns, job.params);
-    // What is printed: the slabs' bridges stay hollow (Supports::bridges_volume).
-    double saved_v = r.columns.volume > 0 ? 1 - (r.supports.volume - r.supports.bridges_volume) / r.columns.volume : 0;
+    double saved_v = r.columns.volume > 0 ? 1 - printed_volume(r.supports) / r.columns.volume : 0;
     double saved_l = r.columns.length > 0 ? 1 - r.supports.length / r.columns.length : 0;
     j["saving_vs_columns"] = {{"volume", saved_v}, {"length", saved_l}};
     if (job.timings) {  // wall-clock times differ from run to run: --no-timings leaves them out
@@ -308,7 +307,9 @@ void write_outputs(const std::string& dir, const std::vector<OutputFile>& files)
         if (!b.empty()) ::unlink(b.c_str());
 }
 
-double support_grams(const Supports& s, const Params& p) { return (s.volume - s.bridges_volume) / 1000.0 * p.filament_density; }
+double printed_volume(const Supports& s) { return s.volume - s.bridges_volume; }
+
+double support_grams(const Supports& s, const Params& p) { return printed_volume(s) / 1000.0 * p.filament_density; }
 
 std::string human_summary(const Result& r, const Job& job, const std::string& dir) {
     const auto& st = r.supports.sized.tree.stats;
@@ -325,7 +326,7 @@ std::string human_summary(const Result& r, const Job& job, const std::string& di
     const SlicerCost& cost = r.supports.slicer_cost;  // estimated once, by the pipeline
     s += fmt::format("  support     {:.2f} g of filament ({:.0f} mm^3 at {:g} g/cm^3), about {:.1f} min of printing "
                      "added (estimate: Cura {:.1f}, PrusaSlicer {:.1f})\n",
-                     support_grams(r.supports, p), r.supports.volume - r.supports.bridges_volume, p.filament_density, cost.seconds / 60,
+                     support_grams(r.supports, p), printed_volume(r.supports), p.filament_density, cost.seconds / 60,
                      cost.cura_seconds / 60, cost.prusa_seconds / 60);
     s += fmt::format("              {:.0f} mm of struts\n", r.supports.length);
     double total = 0;

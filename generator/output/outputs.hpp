@@ -48,7 +48,11 @@ std::vector<OutputFile> support_mesh_files(const std::string& name, const Mesh& 
 // Creates `dir` if needed and writes all files atomically as a set. Throws OutputError.
 void write_outputs(const std::string& dir, const std::vector<OutputFile>& files);
 
-// Grams of filament the supports take: their volume times the preset's filament density.
+// The volume the slicers print (mm^3): the support solid without the slabs' bridges, which both
+// slicers' files leave hollow or out (ceilings/slabs.hpp).
+double printed_volume(const Supports& s);
+
+// Grams of filament the supports take: their printed volume times the preset's filament density.
 double support_grams(const Supports& s, const Params& p);
 
 // A short human summary of a run for stdout: size, pose, tree, support grams and the minutes they

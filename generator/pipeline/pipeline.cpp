@@ -774,8 +774,8 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     });
     // The user's omitted struts are numbered in the final tree (the one the .scad shows).
     // Neighbouring rows as slabs: the same lines under the ceiling, each drawn once by CuraEngine.
-    ceilings.walls = join_rows_into_slabs(*query, std::move(ceilings.walls), p);
     r.supports = sw.time("struts", progress, [&] {
+        ceilings.walls = join_rows_into_slabs(*query, std::move(ceilings.walls), p);
         return finish_supports(std::move(grown), p, job.edits.omit_struts, std::move(ceilings.walls));
     });
     Params columns = p;
