@@ -1,5 +1,6 @@
 #include "ceilings/ceilings.hpp"
 #include "ceilings/hybrid.hpp"
+#include "ceilings/slabs.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -69,7 +70,9 @@ WallsPrinted walls_printed(const SlicerRoute& r, const std::vector<CeilingWall>&
         }
     double low = walls.front().bottom, high = walls.front().top;
     for (const CeilingWall& w : walls) low = std::min(low, w.bottom), high = std::max(high, w.top);
-    std::vector<std::size_t> island(walls.size()), line(walls.size());
+    std::vector<std::size_t> island(walls.size()), line(walls.size()), bridges;
+    for (std::size_t i = 0; i < walls.size(); ++i)
+        if (walls[i].bridge) bridges.push_back(i);
     std::vector<double> length(walls.size());
     auto root = [](std::vector<std::size_t>& up, std::size_t i) {
         while (up[i] != i) i = up[i] = up[up[i]];
@@ -93,14 +96,27 @@ WallsPrinted walls_printed(const SlicerRoute& r, const std::vector<CeilingWall>&
             if (printed(i) && root(line, i) == i && !walls[i].bridge)
                 out.line_seconds += line_route_seconds(r, length[i], walls[i].thickness);
         // A slab's two rows are drawn once each, not as loops: its outline in place of the two loops
-        // along it (the loops priced above).
-        if (slabs_printed)
-            for (const CeilingWall& w : walls)
-                if (w.bridge && w.bottom <= z && z < w.top) {
-                    const double length = horizontal_distance(w.from, w.to), row = w.row_thickness;
-                    out.line_seconds += outline_route_seconds(r, length, w.thickness + 2 * row) -
-                                        2 * line_route_seconds(r, length, row);
-                }
+        // along it (the loops priced above). A pair's bridges that meet end to end on this layer (a
+        // staircase under a round or sloping ceiling, one bridge a step) are one slab, one outline:
+        // priced a bridge at a time, each step's two ends made a staircase's slab dearer than its
+        // loops (propeller's blades: 30 s more on Cura, where the slicer printed them faster).
+        if (!slabs_printed) continue;
+        for (const std::size_t i : bridges) island[i] = i, length[i] = 0;
+        for (std::size_t a = 0; a < bridges.size(); ++a)
+            for (std::size_t b = a + 1; b < bridges.size(); ++b) {
+                const CeilingWall &u = walls[bridges[a]], &v = walls[bridges[b]];
+                if (printed(bridges[a]) && printed(bridges[b]) && std::abs(u.thickness - v.thickness) < kMeet &&
+                    (horizontal_distance(u.to, v.from) < kMeet || horizontal_distance(u.from, v.to) < kMeet))
+                    island[root(island, bridges[a])] = root(island, bridges[b]);
+            }
+        for (const std::size_t i : bridges)
+            if (printed(i)) length[root(island, i)] += horizontal_distance(walls[i].from, walls[i].to);
+        for (const std::size_t i : bridges)
+            if (printed(i) && root(island, i) == i) {
+                const double row = walls[i].row_thickness;
+                out.line_seconds += outline_route_seconds(r, length[i], walls[i].thickness + 2 * row) -
+                                    2 * line_route_seconds(r, length[i], row);
+            }
     }
     return out;
 }
@@ -1214,6 +1230,12 @@ void drop_idle_stubs(const ModelQuery& q, JudgedSurface& surface, const std::vec
 }
 
 // Does any wall's solid (its width across, foot to top) overlap one of the boxes?
+// Seconds the slabs the pipeline makes of these pieces (join_rows_into_slabs) save on the Cura
+// route, against the pieces alone: each slab's outline in place of its rows' loops.
+double slabs_saving(const ModelQuery& q, const std::vector<CeilingWall>& pieces, const Params& p) {
+    return walls_seconds(kCuraRoute, pieces, p) - walls_seconds(kCuraRoute, join_rows_into_slabs(q, pieces, p), p);
+}
+
 bool enters_blocker(const std::vector<Run>& walls, const std::vector<Box3>& blockers, const Params& p) {
     const double half = 0.5 * p.wall_thickness;
     for (const Run& w : walls)
@@ -1235,19 +1257,20 @@ bool ceilings_laid_out(const Params& p) {
 
 Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
                           const TreeCounter& tree_count, const std::vector<Box3>& blockers, double most_left,
-                          const TipAt& tip_at) {
+                          const TipAt& tip_at, const RivalSaving& rival) {
     Params walls = p;
     walls.hybrid_height = 0;  // walls stand on the bed or a floor (the hybrid: support_hybrid)
     return lay_out_ceilings(q, samples, walls, [](std::vector<CeilingWall> pieces) { return pieces; },
                             [&](const std::vector<Sample>& s, const std::vector<CeilingWall>&) {
                                 return s.empty() ? TreeCount{} : tree_count(s);
                             },
-                            blockers, most_left, tip_at);
+                            blockers, most_left, tip_at, {}, rival);
 }
 
 Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
                           const PiecesRule& finish, const PiecesTreeCounter& tree_count, const std::vector<Box3>& blockers,
-                          double most_left, const TipAt& tip_at, const std::vector<char>& stay) {
+                          double most_left, const TipAt& tip_at, const std::vector<char>& stay,
+                          const RivalSaving& rival) {
     Ceilings out;
     if (!ceilings_laid_out(p)) {
         out.rest = samples, out.stay = stay;
@@ -1346,11 +1369,12 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         const double tree_cura = tree_s(kCuraRoute, t), tree_prusa = tree_s(kPrusaRoute, t);
         // A layout's seconds on both routes: its walls, and the tree for the samples they leave.
         // Walls that alone cost more than the tree lose whatever the rest costs: its tree is not grown.
-        // (The walls are priced as walls, not as the slabs the pipeline makes of them for Cura
-        // (ceilings/slabs.hpp): priced so, more regions got walls and PrusaSlicer printed them
-        // slower: propeller 1.68x -> 1.95x snug, extruder_idler 0.53x -> 0.56x.)
+        // On the Cura route the walls are priced as the slabs the pipeline makes of them
+        // (ceilings/slabs.hpp): priced as loops, the blades of propeller and the pipe_tee's
+        // underside kept trees that both slicers printed slower (bench/results/validation.md).
         auto price = [&](const Layout& l) -> std::optional<std::pair<double, double>> {
-            double cura = walls_route_seconds(kCuraRoute, l.w, p), prusa = walls_route_seconds(kPrusaRoute, l.w, p);
+            double cura = walls_route_seconds(kCuraRoute, l.w, p) - slabs_saving(q, l.pieces, p),
+                   prusa = walls_route_seconds(kPrusaRoute, l.w, p);
             if (!(cura < tree_cura && prusa < tree_prusa)) return std::nullopt;
             const TreeCount rest = tree_count(l.left, l.pieces);
             return std::pair{cura + tree_s(kCuraRoute, rest), prusa + tree_s(kPrusaRoute, rest)};
@@ -1373,7 +1397,12 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
                 best = std::move(fewer), cost = c;
         if (!cost) continue;
         // Either slicer may print it: walls only where both print them faster.
-        const bool taken = cost->first < tree_cura && cost->second < tree_prusa;
+        bool taken = cost->first < tree_cura && cost->second < tree_prusa;
+        // Asked only of walls that beat the tree: the rival lays out and prices another structure.
+        if (taken && rival) {
+            const auto [cura, prusa] = rival(own);
+            taken = cost->first < tree_cura - cura && cost->second < tree_prusa - prusa;
+        }
         // The hybrid's regions are weighed in the whole below where taken, or where one route
         // alone prefers them. One both routes price dearer alone is left: each weighing grows a
         // tree for the whole, and on the tuning set, the validation parts and the examples (both

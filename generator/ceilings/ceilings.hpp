@@ -33,8 +33,10 @@
 //               its height (wall_thickness_for), never thinner than the wall thickness
 //     choice    per region, by the slicers' estimated seconds (core/slicer_time.hpp): walls only
 //               where they cost less than the region's own tree on the Cura route AND on the
-//               PrusaSlicer route (which slicer the user has is not known); the tree is grown
-//               from the region's samples alone and counted by the caller's `tree_count`
+//               PrusaSlicer route (which slicer the user has is not known; on the Cura route
+//               the walls are priced as the slabs the pipeline makes of them, ceilings/slabs.hpp);
+//               the tree is grown from the region's samples alone and counted by the caller's
+//               `tree_count`
 //     coverage  a sample is handed to the walls when every point `check` judges (overhang faces,
 //               ridges, lowest points: check/judge_overhangs.hpp) that the sample covers (as the
 //               sampling counts it: coverage_reach, same stretch of surface) lies within
@@ -54,6 +56,7 @@
 #pragma once
 
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "core/geometry.hpp"
@@ -116,12 +119,20 @@ constexpr double kMostLeftToPrice = 0.5;
 // moves a tip aside from its sample); empty: at the sample.
 using TipAt = std::function<Vec3(const Sample&)>;
 
+// What another structure than walls would save on some samples against their own tree: seconds
+// on the Cura and PrusaSlicer routes (the pipeline's: the hybrid, ceilings/hybrid.hpp, laid out
+// over them alone; nothing where it takes no region).
+using RivalSaving = std::function<std::pair<double, double>(const std::vector<Sample>&)>;
+
 // A region whose walls would enter one of the user's `support_blockers` (placed-model coordinates)
 // keeps its tree (the tree routes around blockers; a wall cannot). `most_left`: kMostLeftToPrice
-// (tests of the walls' geometry pass 1 to price every region).
+// (tests of the walls' geometry pass 1 to price every region). `rival`: walls beating a region's
+// tree are taken only where they beat it by more than the rival saves on the region's samples, on
+// both routes (the hybrid comes after the walls, on what they leave: a deck 12 mm up once got
+// walls that beat its tree and shut out a hybrid cheaper than both on both routes).
 Ceilings support_ceilings(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
                           const TreeCounter& tree_count, const std::vector<Box3>& support_blockers = {},
-                          double most_left = kMostLeftToPrice, const TipAt& tip_at = {});
+                          double most_left = kMostLeftToPrice, const TipAt& tip_at = {}, const RivalSaving& rival = {});
 
 // The layout support_ceilings and support_hybrid (ceilings/hybrid.hpp) share: regions of samples
 // whose fall `floor_under` allows (p.hybrid_height > 0: room under a foot that far below the
@@ -136,7 +147,7 @@ using PiecesTreeCounter = std::function<TreeCount(const std::vector<Sample>&, co
 Ceilings lay_out_ceilings(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
                           const PiecesRule& finish, const PiecesTreeCounter& tree_count,
                           const std::vector<Box3>& support_blockers, double most_left, const TipAt& tip_at = {},
-                          const std::vector<char>& stay = {});
+                          const std::vector<char>& stay = {}, const RivalSaving& rival = {});
 
 // What `pieces` carry of `samples` (as lay_out_ceilings took them, `stay` per sample; a sample
 // that stays is never carried), judged as lay_out_ceilings judges it: `walls` the pieces, `rest`

@@ -689,9 +689,17 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         // the hybrid's too).
         const FeetTreeCounter count = feet_tree_counter(*query, p, blockers, counted);
         const TipAt tip_at = tips_of(hung);
+        // Walls are taken where they beat the hybrid over the same samples too: it is laid out on
+        // what the walls leave.
+        RivalSaving hybrid_saving;
+        if (p.hybrid_height > 0)
+            hybrid_saving = [&](const std::vector<Sample>& s) {
+                const Ceilings h = support_hybrid(*query, s, p, count, blockers, tip_at, {});
+                return std::pair{h.tree_cura_s - h.walls_cura_s, h.tree_prusa_s - h.walls_prusa_s};
+            };
         walls_only = support_ceilings(*query, r.samples.samples, p,
                                       [&count](const std::vector<Sample>& s) { return count(s, {}); }, blockers,
-                                      kMostLeftToPrice, tip_at);
+                                      kMostLeftToPrice, tip_at, hybrid_saving);
         if (p.hybrid_height <= 0) return walls_only;
         hybrid = hybrid_under(*query, walls_only, p, blockers, count, tip_at);
         return joined(walls_only, hybrid);

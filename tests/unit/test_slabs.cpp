@@ -115,6 +115,36 @@ TEST(Slabs, SlabsCostCuraLessAndPrusaSlicerTheSame) {
     EXPECT_NEAR(walls_seconds(kPrusaRoute, after, p), walls_seconds(kPrusaRoute, before, p), 1e-9);
 }
 
+// Under a round or sloping ceiling a row is a staircase of pieces, and its slab a bridge under
+// each step. On a layer, the steps' bridges that meet end to end are one slab: one outline, in
+// place of the loops along its length. (Priced a bridge at a time, each step added two ends, and a
+// staircase's slab cost Cura more than its loops: the choice then kept trees on propeller's blades
+// that both slicers printed slower than walls.)
+TEST(Slabs, AStaircasesBridgesOnALayerAreOneSlab) {
+    const Params p;
+    std::vector<CeilingWall> rows;
+    for (double y : {0.0, 3.0})
+        for (int i = 0; i < 10; ++i)  // 10 steps of 0.5 mm, tops 4.0 down to 3.1 mm
+            rows.push_back({{0.5 * i, y, 0}, {0.5 * (i + 1), y, 0}, 0, 4.0 - 0.1 * i, false, 0.5});
+    std::vector<CeilingWall> slab = rows;
+    const double width = 2.5 + 0.02;  // between the rows' inner faces, a hair into each
+    for (int i = 0; i < 10; ++i) {
+        CeilingWall b{{0.5 * i, 1.5, 0}, {0.5 * (i + 1), 1.5, 0}, 0, 4.0 - 0.1 * i, false, width};
+        b.bridge = true, b.row_thickness = 0.5;
+        slab.push_back(b);
+    }
+    double outlines = 0;
+    for (int k = 0; (k + 0.5) * p.layer_height < 4.0; ++k) {
+        int steps = 0;  // the first `steps` pieces of each row reach layer k's middle
+        for (int i = 0; i < 10; ++i) steps += (k + 0.5) * p.layer_height < 4.0 - 0.1 * i;
+        const double length = 0.5 * steps;
+        outlines += outline_route_seconds(kCuraRoute, length, width + 2 * 0.5) - 2 * line_route_seconds(kCuraRoute, length, 0.5);
+    }
+    EXPECT_NEAR(walls_printed(kCuraRoute, slab, p).line_seconds, walls_printed(kCuraRoute, rows, p).line_seconds + outlines, 1e-9);
+    EXPECT_LT(walls_seconds(kCuraRoute, slab, p), walls_seconds(kCuraRoute, rows, p));
+    EXPECT_NEAR(walls_seconds(kPrusaRoute, slab, p), walls_seconds(kPrusaRoute, rows, p), 1e-9);
+}
+
 // A post standing between two rows that would pair: no bridge comes within the side clearance of it.
 TEST(Slabs, NoBridgeWhereThePostStandsBetweenTwoRows) {
     const Params p;
