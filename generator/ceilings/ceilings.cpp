@@ -37,6 +37,50 @@ double wall_line_seconds(const SlicerRoute& r, double length, double height, dou
     return height / p.layer_height * line_route_seconds(r, length, thickness);
 }
 
+namespace {
+
+// Seconds the slabs among `walls` add on a route, against the loops of their rows: on every layer,
+// each slab's outline in place of the two loops along it. A pair's bridges that meet end to end on
+// a layer (a staircase under a round or sloping ceiling, one bridge a step) are one slab, one
+// outline: priced a bridge at a time, each step's two ends made a staircase's slab dearer than its
+// loops, and the walls' choice then kept trees on propeller's blades that both slicers printed
+// slower (bench/results/validation.md).
+double slabs_seconds(const SlicerRoute& r, const std::vector<CeilingWall>& walls, const Params& p) {
+    constexpr double kMeet = 1e-3;  // as walls_printed's
+    std::vector<std::size_t> bridges;
+    for (std::size_t i = 0; i < walls.size(); ++i)
+        if (walls[i].bridge) bridges.push_back(i);
+    if (bridges.empty()) return 0;
+    // Each bridge's neighbours along its slab: the bridge of the same pair (as wide) that starts
+    // where it ends, and the one that ends where it starts.
+    const std::size_t none = walls.size();
+    std::vector<std::size_t> next(walls.size(), none), previous(walls.size(), none);
+    for (const std::size_t a : bridges)
+        for (const std::size_t b : bridges)
+            if (a != b && std::abs(walls[a].thickness - walls[b].thickness) < kMeet &&
+                horizontal_distance(walls[a].to, walls[b].from) < kMeet)
+                next[a] = b, previous[b] = a;
+    double low = INFINITY, high = -INFINITY;
+    for (const std::size_t i : bridges) low = std::min(low, walls[i].bottom), high = std::max(high, walls[i].top);
+    double seconds = 0;
+    for (long k = std::max(0L, static_cast<long>(std::floor(low / p.layer_height))); (k + 0.5) * p.layer_height < high; ++k) {
+        const double z = (k + 0.5) * p.layer_height;
+        auto printed = [&](std::size_t i) { return i != none && walls[i].bottom <= z && z < walls[i].top; };
+        for (const std::size_t i : bridges) {
+            if (!printed(i) || printed(previous[i])) continue;  // a slab from its first bridge on the layer
+            double length = 0;
+            std::size_t steps = 0;  // (a chain of bridges never turns back on itself; bounded anyway)
+            for (std::size_t j = i; printed(j) && steps < bridges.size(); j = next[j], ++steps)
+                length += horizontal_distance(walls[j].from, walls[j].to);
+            const double row = walls[i].row_thickness;
+            seconds += outline_route_seconds(r, length, walls[i].thickness + 2 * row) - 2 * line_route_seconds(r, length, row);
+        }
+    }
+    return seconds;
+}
+
+}  // namespace
+
 WallsPrinted walls_printed(const SlicerRoute& r, const std::vector<CeilingWall>& walls, const Params& p) {
     WallsPrinted out;
     if (walls.empty()) return out;
@@ -70,9 +114,7 @@ WallsPrinted walls_printed(const SlicerRoute& r, const std::vector<CeilingWall>&
         }
     double low = walls.front().bottom, high = walls.front().top;
     for (const CeilingWall& w : walls) low = std::min(low, w.bottom), high = std::max(high, w.top);
-    std::vector<std::size_t> island(walls.size()), line(walls.size()), bridges;
-    for (std::size_t i = 0; i < walls.size(); ++i)
-        if (walls[i].bridge) bridges.push_back(i);
+    std::vector<std::size_t> island(walls.size()), line(walls.size());
     std::vector<double> length(walls.size());
     auto root = [](std::vector<std::size_t>& up, std::size_t i) {
         while (up[i] != i) i = up[i] = up[up[i]];
@@ -95,29 +137,9 @@ WallsPrinted walls_printed(const SlicerRoute& r, const std::vector<CeilingWall>&
         for (std::size_t i = 0; i < walls.size(); ++i)
             if (printed(i) && root(line, i) == i && !walls[i].bridge)
                 out.line_seconds += line_route_seconds(r, length[i], walls[i].thickness);
-        // A slab's two rows are drawn once each, not as loops: its outline in place of the two loops
-        // along it (the loops priced above). A pair's bridges that meet end to end on this layer (a
-        // staircase under a round or sloping ceiling, one bridge a step) are one slab, one outline:
-        // priced a bridge at a time, each step's two ends made a staircase's slab dearer than its
-        // loops (propeller's blades: 30 s more on Cura, where the slicer printed them faster).
-        if (!slabs_printed) continue;
-        for (const std::size_t i : bridges) island[i] = i, length[i] = 0;
-        for (std::size_t a = 0; a < bridges.size(); ++a)
-            for (std::size_t b = a + 1; b < bridges.size(); ++b) {
-                const CeilingWall &u = walls[bridges[a]], &v = walls[bridges[b]];
-                if (printed(bridges[a]) && printed(bridges[b]) && std::abs(u.thickness - v.thickness) < kMeet &&
-                    (horizontal_distance(u.to, v.from) < kMeet || horizontal_distance(u.from, v.to) < kMeet))
-                    island[root(island, bridges[a])] = root(island, bridges[b]);
-            }
-        for (const std::size_t i : bridges)
-            if (printed(i)) length[root(island, i)] += horizontal_distance(walls[i].from, walls[i].to);
-        for (const std::size_t i : bridges)
-            if (printed(i) && root(island, i) == i) {
-                const double row = walls[i].row_thickness;
-                out.line_seconds += outline_route_seconds(r, length[i], walls[i].thickness + 2 * row) -
-                                    2 * line_route_seconds(r, length[i], row);
-            }
     }
+    // A slab's two rows are drawn once each, not as loops (the loops priced above).
+    if (slabs_printed) out.line_seconds += slabs_seconds(r, walls, p);
     return out;
 }
 
@@ -1233,7 +1255,7 @@ void drop_idle_stubs(const ModelQuery& q, JudgedSurface& surface, const std::vec
 // Seconds the slabs the pipeline makes of these pieces (join_rows_into_slabs) save on the Cura
 // route, against the pieces alone: each slab's outline in place of its rows' loops.
 double slabs_saving(const ModelQuery& q, const std::vector<CeilingWall>& pieces, const Params& p) {
-    return walls_seconds(kCuraRoute, pieces, p) - walls_seconds(kCuraRoute, join_rows_into_slabs(q, pieces, p), p);
+    return -slabs_seconds(kCuraRoute, join_rows_into_slabs(q, pieces, p), p);
 }
 
 bool enters_blocker(const std::vector<Run>& walls, const std::vector<Box3>& blockers, const Params& p) {
@@ -1372,10 +1394,12 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         // On the Cura route the walls are priced as the slabs the pipeline makes of them
         // (ceilings/slabs.hpp): priced as loops, the blades of propeller and the pipe_tee's
         // underside kept trees that both slicers printed slower (bench/results/validation.md).
+        // (PrusaSlicer's first: the slabs are laid out only for walls it prices below the tree.)
         auto price = [&](const Layout& l) -> std::optional<std::pair<double, double>> {
-            double cura = walls_route_seconds(kCuraRoute, l.w, p) - slabs_saving(q, l.pieces, p),
-                   prusa = walls_route_seconds(kPrusaRoute, l.w, p);
-            if (!(cura < tree_cura && prusa < tree_prusa)) return std::nullopt;
+            const double prusa = walls_route_seconds(kPrusaRoute, l.w, p);
+            if (!(prusa < tree_prusa)) return std::nullopt;
+            const double cura = walls_route_seconds(kCuraRoute, l.w, p) - slabs_saving(q, l.pieces, p);
+            if (!(cura < tree_cura)) return std::nullopt;
             const TreeCount rest = tree_count(l.left, l.pieces);
             return std::pair{cura + tree_s(kCuraRoute, rest), prusa + tree_s(kPrusaRoute, rest)};
         };
