@@ -1251,13 +1251,13 @@ void drop_idle_stubs(const ModelQuery& q, JudgedSurface& surface, const std::vec
     }
 }
 
-// Does any wall's solid (its width across, foot to top) overlap one of the boxes?
 // Seconds the slabs the pipeline makes of these pieces (join_rows_into_slabs) save on the Cura
 // route, against the pieces alone: each slab's outline in place of its rows' loops.
 double slabs_saving(const ModelQuery& q, const std::vector<CeilingWall>& pieces, const Params& p) {
     return -slabs_seconds(kCuraRoute, join_rows_into_slabs(q, pieces, p), p);
 }
 
+// Does any wall's solid (its width across, foot to top) overlap one of the boxes?
 bool enters_blocker(const std::vector<Run>& walls, const std::vector<Box3>& blockers, const Params& p) {
     const double half = 0.5 * p.wall_thickness;
     for (const Run& w : walls)
