@@ -689,12 +689,11 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
         // the hybrid's too).
         const FeetTreeCounter count = feet_tree_counter(*query, p, blockers, counted);
         const TipAt tip_at = tips_of(hung);
-        // Walls are taken where they beat the hybrid over the same samples too: it is laid out on
-        // what the walls leave.
-        // The hybrid stands on the tree with room under its feet (hybrid_floor): where a sample has
-        // none, it cannot take the walls' whole region and is not laid out (on propeller's blades,
-        // 1.7 mm over the bed at their tips, that cost 9 % of the run's instructions and changed
-        // nothing; the same on fandisk).
+        // Walls are taken where they beat the hybrid over the same samples too, since it is laid
+        // out on what the walls leave. It stands on the tree with room under its feet
+        // (hybrid_floor): where a sample has none, it cannot take the walls' whole region and is
+        // not laid out (on propeller's blades, 1.7 mm over the bed at their tips, that cost 9 % of
+        // the run's instructions and changed nothing; the same on fandisk).
         RivalSaving hybrid_saving;
         if (p.hybrid_height > 0)
             hybrid_saving = [&](const std::vector<Sample>& s) {
