@@ -18,6 +18,11 @@ namespace cs {
 
 namespace {
 
+// Pieces whose ends lie this close (mm) meet (a row's stations are written to the same
+// coordinates, so theirs agree far more closely): for the walls' lines and islands, and for the
+// bridges along one slab.
+constexpr double kMeet = 1e-3;
+
 // Horizontal distance from x to the centre line of piece w.
 double to_centre_line(const Vec3& x, const CeilingWall& w) { return horizontal_point_segment_distance(x, w.from, w.to); }
 
@@ -46,7 +51,6 @@ namespace {
 // loops, and the walls' choice then kept trees on propeller's blades that both slicers printed
 // slower (bench/results/validation.md).
 double slabs_seconds(const SlicerRoute& r, const std::vector<CeilingWall>& walls, const Params& p) {
-    constexpr double kMeet = 1e-3;  // as walls_printed's
     std::vector<std::size_t> bridges;
     for (std::size_t i = 0; i < walls.size(); ++i)
         if (walls[i].bridge) bridges.push_back(i);
@@ -90,7 +94,6 @@ WallsPrinted walls_printed(const SlicerRoute& r, const std::vector<CeilingWall>&
     // Pieces in line meet end to end (a row's stations are written to the same coordinates); pieces
     // touch where an end of one lies within their half thicknesses of the other's line (a join ends
     // inside the rows it joins), and the slicer's outline of the two is one.
-    constexpr double kMeet = 1e-3;
     auto touch = [](const CeilingWall& u, const CeilingWall& v) {
         return an_end_within(u, v, 0.5 * (u.thickness + v.thickness) + kMeet);
     };
@@ -1603,6 +1606,13 @@ Box3 wall_box(const CeilingWall& w, double margin) {
     b.min = {std::min(w.from.x, w.to.x) - side, std::min(w.from.y, w.to.y) - side, w.bottom};
     b.max = {std::max(w.from.x, w.to.x) + side, std::max(w.from.y, w.to.y) + side, w.top};
     return b;
+}
+
+double bridges_volume(const std::vector<CeilingWall>& walls) {
+    double v = 0;
+    for (const CeilingWall& w : walls)
+        if (w.bridge) v += signed_volume(wall_mesh(w));
+    return v;
 }
 
 Mesh wall_mesh(const CeilingWall& w) {

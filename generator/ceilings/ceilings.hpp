@@ -186,6 +186,10 @@ double long_top(const Params& p, double thickness);
 // its faces as triangles.
 Mesh wall_mesh(const CeilingWall& w);
 
+// The volume of the slabs' bridges among `walls` (mm^3, their wall_mesh's): what no slicer prints
+// (ceilings/slabs.hpp), so the grams leave it out.
+double bridges_volume(const std::vector<CeilingWall>& walls);
+
 // The box one wall takes, `margin` wider on every side across the floor plan (its ends and faces):
 // from `bottom` to `top`, its footprint the from-to line grown by half its thickness and `margin`.
 // Axis-aligned, so it holds a turned wall too (with some air at its corners). Example: the hybrid

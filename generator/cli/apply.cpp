@@ -77,9 +77,7 @@ int cmd_apply(const ApplyArgs& a) {
     write_outputs(dir, support_mesh_files(name, model, supports, built, p));
     if (!a.quiet) {
         // What is printed: the slabs' bridges stay hollow (ceilings/slabs.hpp), as in a run's summary.
-        double printed = signed_volume(supports);
-        for (const CeilingWall& w : built.walls)
-            if (w.bridge) printed -= signed_volume(wall_mesh(w));
+        const double printed = signed_volume(supports) - bridges_volume(built.walls);
         std::printf("applied %s (rendered in %.1f s): rewrote %s/%s.supports.stl, .supported.stl, .3mf, .prusa.3mf\n",
                     a.scad.c_str(), rr.seconds, dir.c_str(), name.c_str());
         std::printf("  supports now %.2f g (%.0f mm^3); the report still describes the supports as grown, and\n"

@@ -271,9 +271,9 @@ Supports finish_supports(SizedTree grown, const Params& p, const std::vector<int
     for (const auto& w : s.walls) {
         const Mesh m = wall_mesh(w);
         s.volume += signed_volume(m);
-        if (w.bridge) s.bridges_volume += signed_volume(m);
         append(s.mesh, m);
     }
+    s.bridges_volume = bridges_volume(s.walls);
     s.bodies_volume = signed_volume(s.mesh);  // separate closed shells: their volumes add
     s.length = s.sized.tree.total_length();
     return s;

@@ -61,9 +61,15 @@ const std::string kTreeOnly = "--ceiling-span 0";
 // At the default span the walls carry all of the T's plate (a row fewer, its outer rows pulled in);
 // rows 3 mm apart leave its rim to a tree: a run with struts and walls both.
 const std::string kTreeAndWalls = "--ceiling-span 3";
-// Walls, not the hybrid: the T's plate 10 mm up is as cheap either way to the time model, which
-// takes the hybrid where it is a little cheaper on both routes (walls must beat it too).
+// Walls, not the hybrid: on the T's plate 10 mm up the time model prices the hybrid cheaper than
+// walls on both routes, and walls must beat it too.
 const std::string kWallsNotHybrid = "--hybrid-height 0";
+
+// Grows the T (t_shape, written to d/tee.stl) into d/out, pose kept, with `flags`.
+Run grow_t(const TempDir& d, const std::string& flags) {
+    write_stl(d / "tee.stl", t_shape());
+    return cs(quote(d / "tee.stl") + " --orient keep -q --out " + quote(d / "out") + " " + flags);
+}
 
 CheckResult check_of(const std::string& model_stl, const std::string& supports_stl) {
     return check_supports(read_mesh(model_stl), read_mesh(supports_stl, true), Params{}, CheckOptions{});
@@ -521,9 +527,8 @@ TEST(ScadEdit, EditedScadRendersOnDebian2021AndOnManifold) {
 TEST(ScadEdit, ApplyKeepsTheSlabsBridgesOutOfPrusaSlicersFileAndTheGrams) {
     if (!have_openscad()) GTEST_SKIP() << "no OpenSCAD";
     TempDir d;
-    write_stl(d / "tee.stl", t_shape());
     const std::string out = d / "out";
-    ASSERT_EQ(cs(quote(d / "tee.stl") + " --orient keep -q --out " + quote(out) + " " + kWallsNotHybrid).code, 0);
+    ASSERT_EQ(grow_t(d, kWallsNotHybrid).code, 0);
     const auto report = nlohmann::json::parse(read_text(out + "/tee.report.json"));
     ASSERT_GT(report["supports"]["ceiling_bridges"].get<int>(), 0);
     const double printed_g = (report["supports"]["support_volume_mm3"].get<double>() -
@@ -549,9 +554,8 @@ TEST(ScadEdit, ApplyKeepsTheSlabsBridgesOutOfPrusaSlicersFileAndTheGrams) {
 TEST(ScadEdit, ApplyBringsATweakIntoTheSlicerFiles) {
     if (!have_openscad()) GTEST_SKIP() << "no OpenSCAD";
     TempDir d;
-    write_stl(d / "tee.stl", t_shape());
     const std::string out = d / "out";
-    ASSERT_EQ(cs(quote(d / "tee.stl") + " --orient keep -q --out " + quote(out) + " " + kTreeAndWalls).code, 0);
+    ASSERT_EQ(grow_t(d, kTreeAndWalls).code, 0);
     const std::string model_before = read_text(out + "/tee.model.stl"), report_before = read_text(out + "/tee.report.json");
     const double volume_before = signed_volume(read_mesh(out + "/tee.supports.stl"));
     std::map<std::string, std::string> before;

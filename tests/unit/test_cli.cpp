@@ -196,8 +196,8 @@ TEST(Cli, GoodMeshWritesExactlyTheSixOutputs) {
     TempDir tmp;
     std::string input = write_good_mesh(tmp);
     std::string out = tmp / "out";
-    // Without the hybrid (on its plate 10 mm up the time model takes the hybrid, a little
-    // cheaper on both routes): walls, whose rows pair into slabs.
+    // Without the hybrid (on its plate 10 mm up the time model prices the hybrid cheaper than
+    // walls on both routes): walls, whose rows pair into slabs.
     CliRun r = cli(quote(input) + " --orient keep --hybrid-height 0 --out " + quote(out));
     ASSERT_EQ(r.code, 0) << r.out;
     EXPECT_EQ(entries(out), six_outputs("tee"));
