@@ -375,27 +375,80 @@ std::optional<Station> station(const ModelQuery& q, const XyGrid<std::size_t>& r
     return Station{thick->first, thick->second, t};  // no taller than the first probe: t is enough
 }
 
-// The walls along one line (u from u0 to u1 at v): runs of stations where a wall fits.
+// A row goes on under a hole through its ceiling (a screw or button hole in a lid, an ear's bolt
+// hole) rather than stopping a side clearance short of it on both sides: one piece, so one island
+// fewer on every layer, and its top holds the hole's rim up to its edge (the lid of
+// bench/validation/enclosure_lid left its holes' rims to small trees). Crossed where the row's
+// stations stop for at most this far (mm) and go on over the same floor.
+constexpr double kMostCrossed = 15;
+
+// May the wall go on at `top` over `floor`, `thickness` wide, from station u_from to u_to of the
+// row at v, where no station fits? Where nothing of the model comes within a gap over that top
+// and a side clearance beside it, the floor is the same all along, and the model right above is
+// the ceiling the wall holds (within a gap and a layer, as contact_above finds it), nothing (a hole
+// through it) or no overhang (nothing the tree must still reach from below).
+bool may_cross(const ModelQuery& q, const Frame& f, double v, double u_from, double u_to, double top, double floor,
+               double thickness, const Params& p, double overhang_nz) {
+    if (u_to - u_from > kMostCrossed || top - floor < touching_space(p)) return false;
+    const double half = 0.5 * thickness + tip_side_clearance(p), over = top + 0.5 * p.gap, lowest = floor + 1e-3;
+    for (const double off : {-half, 0.0, half}) {
+        if (q.segment_hits(f.at(u_from, v + off, over), f.at(u_to, v + off, over))) return false;
+        const int n = static_cast<int>(std::ceil((u_to - u_from) / kStation));
+        for (int k = 1; k < n; ++k) {
+            const Vec3 c = f.at(u_from + (u_to - u_from) * k / n, v + off, top);
+            if (q.segment_hits({c.x, c.y, lowest}, {c.x, c.y, over})) return false;
+            if (off == 0) {
+                const auto under = floor_under(q, {c.x, c.y, top + p.gap}, p);
+                if (!under || std::abs(*under - floor) > 0.5 * p.layer_height) return false;
+            }
+            if (auto hit = q.first_hit(c, {0, 0, 1}); hit && hit->point.z - top > p.gap + p.layer_height) {
+                const Vec3 nrm = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
+                if (nrm.z < overhang_nz * norm(nrm)) return false;
+            }
+        }
+    }
+    return true;
+}
+
+// The walls along one line (u from u0 to u1 at v): runs of stations where a wall fits, crossing
+// holes (may_cross: walls only; the hybrid's pieces hang on the tree's tips).
 std::vector<Run> walls_along(const ModelQuery& q, const XyGrid<std::size_t>& region, const std::vector<Sample>& samples,
                              const Frame& f, double v, double u0, double u1, const Params& p, double overhang_nz,
                              bool wide_ref = false) {
     const Vec3 across = f.at(0, 1, 0);
+    const int n = static_cast<int>(std::floor((u1 - u0) / kStation));
+    std::vector<std::optional<Station>> st(n + 1);
+    for (int i = 0; i <= n; ++i) st[i] = station(q, region, samples, f.at(u0 + i * kStation, v, 0), across, p, overhang_nz, wide_ref);
     std::vector<Run> out;
     Run cur;
     auto close = [&] {
         if (cur.top.size() >= 2 && horizontal_distance(cur.top.front(), cur.top.back()) >= kMinWall) out.push_back(cur);
         cur = Run{};
     };
-    const int n = static_cast<int>(std::floor((u1 - u0) / kStation));
-    for (int i = 0; i <= n; ++i) {
+    auto add = [&](int i, double top, double floor, double thickness) {
         const Vec3 c = f.at(u0 + i * kStation, v, 0);
-        if (auto st = station(q, region, samples, c, across, p, overhang_nz, wide_ref)) {
-            cur.top.push_back({c.x, c.y, st->top});
-            cur.floor.push_back(st->floor);
-            cur.thickness.push_back(st->thickness);
-        } else {
-            close();
+        cur.top.push_back({c.x, c.y, top});
+        cur.floor.push_back(floor);
+        cur.thickness.push_back(thickness);
+    };
+    for (int i = 0; i <= n; ++i) {
+        if (st[i]) {
+            add(i, st[i]->top, st[i]->floor, st[i]->thickness);
+            continue;
         }
+        int j = i;
+        while (j <= n && !st[j]) ++j;
+        if (!cur.top.empty() && j <= n && p.hybrid_height <= 0 && std::abs(st[j]->floor - cur.floor.back()) <= 0.5 * p.layer_height) {
+            const double top = std::min(cur.top.back().z, st[j]->top), floor = std::max(cur.floor.back(), st[j]->floor);
+            const double thickness = std::max({cur.thickness.back(), st[j]->thickness, wall_thickness_for(p, top - floor)});
+            if (may_cross(q, f, v, u0 + (i - 1) * kStation, u0 + j * kStation, top, floor, thickness, p, overhang_nz)) {
+                for (int k = i; k < j; ++k) add(k, top, floor, thickness);
+                i = j - 1;
+                continue;
+            }
+        }
+        close();
+        i = j - 1;
     }
     close();
     return out;
