@@ -20,7 +20,9 @@
 //               outer samples; where rows the span apart leave samples, also rows 0.9 x twice the
 //               walls' reach apart (a slope's staircase is held at each piece's middle only), the
 //               layout leaving fewer kept; each row is cut into walls where the ceiling above it is an overhang of this region all across the
-//               wall's width plus tip_side_clearance (a wall beside it, or a hole, ends a wall)
+//               wall's width plus tip_side_clearance (a wall beside it ends a wall); a row goes
+//               on under a hole through its ceiling up to kMostCrossed long (ceilings.cpp
+//               may_cross), not under a pocket in it
 //     floors    the bed, or a level face of the model (a gap above it): walls under a roof over
 //               the model stand on it as pillars do
 //     tops      one air gap under the lowest point of the ceiling over the wall's width, at every
