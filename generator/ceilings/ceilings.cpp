@@ -394,9 +394,9 @@ bool may_cross(const ModelQuery& q, const Frame& f, double v, double u_from, dou
                double thickness, const Params& p, double overhang_nz) {
     if (u_to - u_from > kMostCrossed || top - floor < touching_space(p)) return false;
     const double half = 0.5 * thickness + tip_side_clearance(p), over = top + 0.5 * p.gap, lowest = floor + 1e-3;
+    const int n = static_cast<int>(std::ceil((u_to - u_from) / kStation));
     for (const double off : {-half, 0.0, half}) {
         if (q.segment_hits(f.at(u_from, v + off, over), f.at(u_to, v + off, over))) return false;
-        const int n = static_cast<int>(std::ceil((u_to - u_from) / kStation));
         for (int k = 1; k < n; ++k) {
             const Vec3 c = f.at(u_from + (u_to - u_from) * k / n, v + off, top);
             if (q.segment_hits({c.x, c.y, lowest}, {c.x, c.y, over})) return false;
@@ -443,7 +443,8 @@ std::vector<Run> walls_along(const ModelQuery& q, const XyGrid<std::size_t>& reg
         while (j <= n && !st[j]) ++j;
         if (!cur.top.empty() && j <= n && p.hybrid_height <= 0 && std::abs(st[j]->floor - cur.floor.back()) <= 0.5 * p.layer_height) {
             const double top = std::min(cur.top.back().z, st[j]->top), floor = std::max(cur.floor.back(), st[j]->floor);
-            const double thickness = std::max({cur.thickness.back(), st[j]->thickness, wall_thickness_for(p, top - floor)});
+            // Both ends are at least as tall as the crossing, so as thick as its height asks.
+            const double thickness = std::max(cur.thickness.back(), st[j]->thickness);
             if (may_cross(q, f, v, u0 + (i - 1) * kStation, u0 + j * kStation, top, floor, thickness, p, overhang_nz)) {
                 for (int k = i; k < j; ++k) add(k, top, floor, thickness);
                 i = j - 1;
