@@ -208,6 +208,7 @@ private:
                 if (join_strut_alongside(id, u)) return true;
                 continue;  // two struts in one column would carry both loads at the width of one
             }
+            if (ends_where_a_strut_ends(c)) continue;
             if (c.type == Target::SteepModel || !clear(id, c)) continue;
             if (c.type == Target::Merge && (!clear(c.other, c.point) || !can_escape(c.point, merged_estimate(id, c))))
                 continue;
@@ -234,9 +235,10 @@ private:
     // already ending there? Coming down one line, the two would share faces and corners (not two
     // closed solids but one torn one: a bend straight above a bend, both 20 mm steps, in the
     // Menger sponge with --buildplate-only), and one column would carry two loads at the width of
-    // one. The top of that strut, or -1.
+    // one. The top of that strut, or -1. So does a landing (on the bed or the model) ending where a
+    // strut made before ends, when node `id` lies on that strut (strut_to_the_same_end).
     int strut_alongside(int id, const Candidate& c) const {
-        if (c.type != Target::InCone) return -1;
+        if (c.type != Target::InCone) return strut_to_the_same_end(id, c);
         const Vec3 &a = t_.nodes[id].p, &b = t_.nodes[c.other].p;
         for (int u : books_[c.other].up) {
             const Vec3& top = t_.nodes[u].p;
@@ -247,6 +249,32 @@ private:
         }
         return -1;
     }
+    // Landings ending where one made before ends (within a joint's overlap): two struts ending at
+    // one point give their end caps the same faces, one torn solid, not two closed ones
+    // (menger_sponge3 with --buildplate-only: a merge point made later on a column to the bed
+    // went straight down to the column's foot). The top of such a strut that node `id` lies on,
+    // so that it joins it (split_strut_at), or -1; any other landing there is not taken.
+    int strut_to_the_same_end(int id, const Candidate& c) const {
+        int along = -1;
+        for_landings_ending_at(c, [&](int end) {
+            for (int u : books_[end].up)
+                if (point_segment_distance(t_.nodes[id].p, t_.nodes[u].p, t_.nodes[end].p) < joint_overlap(p_)) along = u;
+        });
+        return along;
+    }
+    bool ends_where_a_strut_ends(const Candidate& c) const {
+        bool shared = false;
+        for_landings_ending_at(c, [&](int) { shared = true; });
+        return shared;
+    }
+    template <typename Visit>
+    void for_landings_ending_at(const Candidate& c, Visit visit) const {
+        if (c.type != Target::Bed && c.type != Target::Model && c.type != Target::SteepModel) return;
+        ends_.visit_near(c.point, 1, [&](int end) {
+            if (distance(t_.nodes[end].p, c.point) < joint_overlap(p_)) visit(end);
+        });
+    }
+
     // Node `id` joins the strut down from `top`, which its own strut would run along, where they meet: straight
     // above the strut's top it joins that top; on the strut (a bend landed on another's column)
     // the strut is split there. The strut below carries both, as wide as the merged load needs,
@@ -421,7 +449,7 @@ private:
     // The first candidate, or else a step down, clear with only `air` around the strut.
     bool take_tight(int id, const std::vector<Candidate>& cands, double air) {
         for (const auto& c : cands) {
-            if (strut_alongside(id, c) >= 0 || !clear(id, c, air)) continue;
+            if (strut_alongside(id, c) >= 0 || ends_where_a_strut_ends(c) || !clear(id, c, air)) continue;
             if (c.type == Target::Merge && !clear(c.other, c.point, air)) continue;
             ++t_.stats.tight;
             accept(id, c);
@@ -542,15 +570,19 @@ private:
                 break;
             }
             case Target::Model:
-            case Target::SteepModel:
-                connect(id, add_node(c.point, NodeKind::ModelContact, contact_under_tip(model_, c.contact, c.point.z, p_),
-                                     bottom_width(id, c.point)));
+            case Target::SteepModel: {
+                const int m = add_node(c.point, NodeKind::ModelContact, contact_under_tip(model_, c.contact, c.point.z, p_),
+                                       bottom_width(id, c.point));
+                ends_.insert(c.point, m);
+                connect(id, m);
                 break;
+            }
             case Target::Bed: {
                 int b = add_node(c.point, NodeKind::Bed, c.point, bottom_width(id, c.point));
                 // Room for a foot: distance to the model from the middle of where a foot would be.
                 Vec3 probe = c.point + Vec3{0, 0, 0.5 * p_.foot_height};
                 t_.nodes[b].room = std::sqrt(model_.squared_distance(probe));
+                ends_.insert(c.point, b);
                 connect(id, b);
                 break;
             }
@@ -572,7 +604,10 @@ private:
             double len = hit ? hit->distance - margin / std::max(k.step_min_cos, -d.z) : a.z / -d.z;
             for (len = std::min(len, k.step_reach); len * -d.z > std::max(k.step_min_drop, best_drop); len *= k.step_shrink) {
                 Vec3 to = a + d * len;
-                if (clear(id, to, clearance) && (to.z < 1e-6 || can_escape(to, bottom_width(id, to))) &&
+                const bool on_bed = to.z < 1e-6;
+                if (clear(id, to, clearance) &&
+                    (on_bed ? !ends_where_a_strut_ends({0, Target::Bed, 0, -1, {to.x, to.y, 0}, {}})
+                            : can_escape(to, bottom_width(id, to))) &&
                     !passes_through_a_node(id, a, to)) {
                     best_drop = a.z - to.z, best = to;
                     break;
@@ -629,6 +664,7 @@ private:
     GrowOptions options_;
     CandidateContext cx_;
     std::map<int, ActiveNodes> pools_;  // active nodes by SweepNode::pool
+    XyGrid<int> ends_{grid_cell(p_)};   // the landings made: bed feet and contact nodes
     std::priority_queue<std::pair<double, int>> heap_;  // highest first, then lowest id
 };
 

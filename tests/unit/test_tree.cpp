@@ -337,6 +337,29 @@ TEST(GrowTree, BuildplateOnlyNeverLandsOnTheModel) {
     for (const auto& pl : g->tree.pillars) EXPECT_FALSE(pl.on_model);
 }
 
+TEST(GrowTree, ALaterNodeOnAColumnToTheBedJoinsItInsteadOfSharingItsFoot) {
+    // A sample 20 mm up whose leaf goes straight down through a 5 mm slot between two slabs, and
+    // one under each slab, 3.5 mm either side of it: the upper leaf cannot reach them past the slabs,
+    // and the two meet under the slot, on its column. That merge went straight down to the same
+    // foot: two struts whose end caps are the same faces, one torn solid (menger_sponge3 with
+    // --buildplate-only). It joins the column instead: one foot, carrying all three.
+    Mesh m = cs::test::box({-10, -5, 12}, {-2.5, 5, 13});
+    append(m, cs::test::box({2.5, -5, 12}, {10, 5, 13}));
+    append(m, cs::test::box({-1, -1, 20}, {1, 1, 21}));
+    Params p;
+    p.supports_on_model = false;  // as there: else the upper leaf stands on a slab
+    ModelQuery q(m);
+    const std::vector<Sample> samples{{{0, 0, 20}, SampleKind::Face}, {{-3.5, 0, 12}, SampleKind::Face}, {{3.5, 0, 12}, SampleKind::Face}};
+    const SupportTree t = grow_tree(q, samples, p);
+    EXPECT_EQ(count_kind(t, NodeKind::Leaf), 3u);
+    EXPECT_EQ(t.stats.dropped, 0u);
+    ASSERT_EQ(count_kind(t, NodeKind::Bed), 1u) << "a foot of its own beside the column's";
+    std::vector<int> struts_into(t.nodes.size(), 0);
+    for (const Strut& s : t.struts) ++struts_into[s.bottom];
+    for (std::size_t v = 0; v < t.nodes.size(); ++v)
+        if (t.nodes[v].kind == NodeKind::Bed) EXPECT_EQ(struts_into[v], 1) << "two struts end on one foot";
+}
+
 TEST(GrowTree, ADeadEndLosesOnlyTheLeavesThatCannotGetDownAlone) {
     // A U on its side, open at the front and both ends: a 27 x 30 ceiling 30 mm up, anchored on
     // the back wall, with the U's bottom arm right under it. Buildplate-only, every branch has to
