@@ -386,13 +386,17 @@ std::optional<Station> station(const ModelQuery& q, const XyGrid<std::size_t>& r
 constexpr double kMostCrossed = 25;
 
 // May the wall go on at `top` over `floor`, `thickness` wide, from station u_from to u_to of the
-// row at v, where no station fits? Where nothing of the model comes within a gap over that top
+// row at v, where no station fits? The hybrid's piece (p.hybrid_height > 0) only across what one of
+// its pieces spans from its foot (cut_at_feet: twice the long top): a longer crossing stands a
+// foot, a tip of the tree, under the hole, holding nothing (a motor mount's 22 mm bore, crossed
+// whole, printed slower on both slicers; within one piece faster on both). Where nothing of the model comes within a gap over that top
 // and a side clearance beside it, the floor is the same all along, and the model right above is
 // the ceiling the wall holds (within a gap and a layer, as contact_above finds it), nothing (a hole
 // through it) or no overhang (nothing the tree must still reach from below).
 bool may_cross(const ModelQuery& q, const Frame& f, double v, double u_from, double u_to, double top, double floor,
                double thickness, const Params& p, double overhang_nz) {
-    if (u_to - u_from > kMostCrossed || top - floor < touching_space(p)) return false;
+    const double most = p.hybrid_height > 0 ? 2 * long_top(p, thickness) : kMostCrossed;  // walls: on the bed
+    if (u_to - u_from > most || top - floor < touching_space(p)) return false;
     const double half = 0.5 * thickness + tip_side_clearance(p), over = top + 0.5 * p.gap, lowest = floor + 1e-3;
     const int n = static_cast<int>(std::ceil((u_to - u_from) / kStation));
     for (const double off : {-half, 0.0, half}) {
@@ -402,7 +406,7 @@ bool may_cross(const ModelQuery& q, const Frame& f, double v, double u_from, dou
             if (q.segment_hits({c.x, c.y, lowest}, {c.x, c.y, over})) return false;
             if (off == 0) {
                 const auto under = floor_under(q, {c.x, c.y, top + p.gap}, p);
-                if (!under || std::abs(*under - floor) > 0.5 * p.layer_height) return false;
+                if (!under || (p.hybrid_height <= 0 && std::abs(*under - floor) > 0.5 * p.layer_height)) return false;
             }
             if (auto hit = q.first_hit(c, {0, 0, 1}); hit && hit->point.z - top > p.gap + p.layer_height) {
                 const Vec3 nrm = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
@@ -414,7 +418,7 @@ bool may_cross(const ModelQuery& q, const Frame& f, double v, double u_from, dou
 }
 
 // The walls along one line (u from u0 to u1 at v): runs of stations where a wall fits, crossing
-// holes (may_cross: walls only; the hybrid's pieces hang on the tree's tips).
+// holes (may_cross).
 std::vector<Run> walls_along(const ModelQuery& q, const XyGrid<std::size_t>& region, const std::vector<Sample>& samples,
                              const Frame& f, double v, double u0, double u1, const Params& p, double overhang_nz,
                              bool wide_ref = false) {
@@ -441,7 +445,7 @@ std::vector<Run> walls_along(const ModelQuery& q, const XyGrid<std::size_t>& reg
         }
         int j = i;
         while (j <= n && !st[j]) ++j;
-        if (!cur.top.empty() && j <= n && p.hybrid_height <= 0 && std::abs(st[j]->floor - cur.floor.back()) <= 0.5 * p.layer_height) {
+        if (!cur.top.empty() && j <= n && std::abs(st[j]->floor - cur.floor.back()) <= 0.5 * p.layer_height) {
             const double top = std::min(cur.top.back().z, st[j]->top), floor = std::max(cur.floor.back(), st[j]->floor);
             // Both ends are at least as tall as the crossing, so as thick as its height asks.
             const double thickness = std::max(cur.thickness.back(), st[j]->thickness);
@@ -1490,10 +1494,12 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         // Either slicer may print it: walls only where both print them faster.
         bool taken = cost->first < tree_cura && cost->second < tree_prusa;
         // Asked only of walls that beat the tree, and not by much (kRivalFromShare): the rival lays
-        // out and prices another structure.
+        // out and prices another structure. Walls give way only where it is cheaper on both routes,
+        // as they are taken over the tree only where both print them faster (priced alone, the
+        // hybrid over enclosure_lid's ears beat the walls on Cura only, and the whole printed slower).
         if (taken && rival && cost->first >= kRivalFromShare * tree_cura && cost->second >= kRivalFromShare * tree_prusa) {
             const auto [cura, prusa] = rival(own);
-            taken = cost->first < tree_cura - cura && cost->second < tree_prusa - prusa;
+            taken = !(tree_cura - cura < cost->first && tree_prusa - prusa < cost->second);
         }
         // The hybrid's regions are weighed in the whole below where taken, or where one route
         // alone prefers them. One both routes price dearer alone is left: each weighing grows a

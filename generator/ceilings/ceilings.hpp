@@ -22,7 +22,7 @@
 //               layout leaving fewer kept; each row is cut into walls where the ceiling above it is an overhang of this region all across the
 //               wall's width plus tip_side_clearance (a wall beside it ends a wall); a row goes
 //               on under a hole through its ceiling up to kMostCrossed long (ceilings.cpp
-//               may_cross), not under a pocket in it
+//               may_cross; the hybrid's up to one piece), not under a pocket in it
 //     floors    the bed, or a level face of the model (a gap above it): walls under a roof over
 //               the model stand on it as pillars do
 //     tops      one air gap under the lowest point of the ceiling over the wall's width, at every
@@ -129,9 +129,9 @@ using RivalSaving = std::function<std::pair<double, double>(const std::vector<Sa
 // A region whose walls would enter one of the user's `support_blockers` (placed-model coordinates)
 // keeps its tree (the tree routes around blockers; a wall cannot). `most_left`: kMostLeftToPrice
 // (tests of the walls' geometry pass 1 to price every region). `rival`: walls beating a region's
-// tree are taken only where they beat it by more than the rival saves on the region's samples, on
-// both routes (the hybrid comes after the walls, on what they leave: a deck 12 mm up once got
-// walls that beat its tree and shut out a hybrid cheaper than both on both routes).
+// tree give way where the rival saves more on the region's samples on both routes (the hybrid
+// comes after the walls, on what they leave: a deck 12 mm up once got walls that beat its tree and
+// shut out a hybrid cheaper than both on both routes).
 Ceilings support_ceilings(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
                           const TreeCounter& tree_count, const std::vector<Box3>& support_blockers = {},
                           double most_left = kMostLeftToPrice, const TipAt& tip_at = {}, const RivalSaving& rival = {});
