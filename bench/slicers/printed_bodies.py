@@ -35,6 +35,12 @@ import slice as S
 LAYER_MM = 0.2
 SAMPLE_MM = 0.1   # extrusion lines are tested at points this far apart
 CELL_MM = 1.0     # hash grid for the points
+# A body spans a layer when the layer's middle, where both slicers cut, lies inside it. An end face
+# that lies on that middle (a tip standing a gap over a face at a layer's middle: wall_rack's at
+# 14.7 mm) has no cross-section there, for any slicer; read back from the STL's 32-bit floats it
+# lies a few 1e-7 mm to either side, so without this margin the bottom end of such a body counted
+# as a layer the slicers left out and its top end did not.
+END_ON_CUT_MM = 1e-4
 _WORD = re.compile(r"([GXYZE])(-?[0-9.]+)")
 
 
@@ -135,7 +141,7 @@ def measure(gcode, supports_stl, model_stl, bed_x, bed_y, removed_first_layers=0
     spans = [(min(v[2] for t in b for v in t), max(v[2] for t in b for v in t)) for b in bodies]
     layers = extrusions_by_layer(gcode)
     shift = removed_first_layers * LAYER_MM
-    removed = sum(1 for k in range(removed_first_layers) for lo, hi in spans if lo < (k + 0.5) * LAYER_MM < hi)
+    removed = sum(1 for k in range(removed_first_layers) for lo, hi in spans if lo + END_ON_CUT_MM < (k + 0.5) * LAYER_MM < hi - END_ON_CUT_MM)
     total = printed = joined = 0
     dropped = []
     for top, pts in sorted(layers.items()):
@@ -145,7 +151,7 @@ def measure(gcode, supports_stl, model_stl, bed_x, bed_y, removed_first_layers=0
             grid[(math.floor(p[0] / CELL_MM), math.floor(p[1] / CELL_MM))].append(p)
         cut = []
         for i, (lo, hi) in enumerate(spans):
-            if lo < mid < hi:
+            if lo + END_ON_CUT_MM < mid < hi - END_ON_CUT_MM:
                 segs = section(bodies[i], mid, 0, 0)
                 if segs:
                     bx = [q[0] for s in segs for q in s]
