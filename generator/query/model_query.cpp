@@ -298,6 +298,7 @@ struct ModelQuery::Memo {
     Answers<3, bool> inside;
     Answers<3, double> distances;
     Answers<3, Vec3> closest;
+    Answers<12, bool> verdicts;
 };
 
 namespace {
@@ -457,6 +458,10 @@ double ModelQuery::squared_distance(const Vec3& p) const {
 
 Vec3 ModelQuery::closest_point(const Vec3& p) const {
     return remembered(memo_->mutex, memo_->closest, key(p), [&] { return out_of_index(vec(impl_->closest_point(pt(in_index(p))))); });
+}
+
+bool ModelQuery::verdict(const Question& question, const std::function<bool()>& decide) const {
+    return remembered(memo_->mutex, memo_->verdicts, question, decide);
 }
 
 bool ModelQuery::inside(const Vec3& p) const {

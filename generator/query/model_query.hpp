@@ -4,7 +4,9 @@
 // CGAL headers compile slowly, so every other stage talks to the model through this class.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <optional>
 
@@ -44,6 +46,15 @@ public:
     // Inside the solid, by the majority of three rays' winding numbers (sound for closed meshes,
     // overlapping shells included; a fair guess for meshes with small holes).
     bool inside(const Vec3& p) const;
+
+    // A verdict a caller decides from this model's answers alone, remembered like the model's own
+    // answers by the question's exact bits: `question` holds everything besides the model that the
+    // verdict depends on, its first value telling the callers' kinds of question apart. A strut's
+    // clearance takes a dozen questions to the model, and within a job the same strut is judged
+    // again and again (the three ways a tree grows from the same leaves, each region priced over
+    // the same samples: three quarters of extruder_idler's struts are asked again).
+    using Question = std::array<double, 12>;
+    bool verdict(const Question& question, const std::function<bool()>& decide) const;
 
     const Mesh& mesh() const { return model_; }
 

@@ -9,11 +9,15 @@
 #include "tree/candidates.hpp"
 #include "tree/placement.hpp"
 #include "tree/tuning.hpp"
+#include "tree/verdicts.hpp"
 
 namespace cs {
 
-bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance,
-                    bool onto_model, double joint_reach) {
+namespace {
+
+// strut_is_clear's verdict, asked of the model every time.
+bool strut_is_clear_now(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance,
+                        bool onto_model, double joint_reach) {
     if (model.segment_hits(a, b)) return false;
     // The strut's own edges, and the same pushed out by the clearance (a bump of the model can
     // slip between the outer lines and still cut the strut, so both are asked).
@@ -59,6 +63,14 @@ bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec
         known = std::sqrt(d2), known_at = q;
     }
     return true;
+}
+
+}  // namespace
+
+bool strut_is_clear(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance,
+                    bool onto_model, double joint_reach) {
+    const auto question = tree_question(TreeVerdict::strut, {a.x, a.y, a.z, wa, b.x, b.y, b.z, wb, clearance, onto_model ? 1.0 : 0.0, joint_reach});
+    return model.verdict(question, [&] { return strut_is_clear_now(model, a, wa, b, wb, clearance, onto_model, joint_reach); });
 }
 
 bool contact_tip_is_clear(const ModelQuery& model, const Params& p, const Vec3& node, const Vec3& contact, double width) {

@@ -2,6 +2,7 @@
 // shifted (the orientation search judges every candidate pose from one index).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "orient/orient.hpp"
@@ -96,6 +97,24 @@ TEST(ModelQuery, AnswersDoNotDependOnWhatWasAskedBefore) {
             ASSERT_EQ(a.has_value(), b.has_value());
             if (a) EXPECT_TRUE(same(a->point, b->point) && a->face == b->face && a->distance == b->distance);
         }
+}
+
+// A caller's verdict is decided once per question (exact bits, kind included) and kept.
+TEST(ModelQuery, RemembersAVerdictByItsQuestion) {
+    const Mesh m = test::bridge_shape();
+    const ModelQuery q(m);
+    int decided = 0;
+    auto decide = [&](bool answer) { return [&decided, answer] { return ++decided, answer; }; };
+    const ModelQuery::Question a{1, 0.5, 2.0}, other_kind{2, 0.5, 2.0}, nearby{1, 0.5, std::nextafter(2.0, 3.0)};
+    EXPECT_TRUE(q.verdict(a, decide(true)));
+    EXPECT_TRUE(q.verdict(a, decide(false)));  // the first answer, not asked again
+    EXPECT_EQ(decided, 1);
+    EXPECT_FALSE(q.verdict(other_kind, decide(false)));
+    EXPECT_FALSE(q.verdict(nearby, decide(false)));
+    EXPECT_EQ(decided, 3);
+    const ModelQuery fresh(m);  // each query (a job's pose) keeps its own
+    EXPECT_FALSE(fresh.verdict(a, decide(false)));
+    EXPECT_EQ(decided, 4);
 }
 
 }  // namespace
