@@ -7,6 +7,7 @@
 #include "query/model_query.hpp"
 #include "tree/tree.hpp"
 #include "tree/tuning.hpp"
+#include "tree/verdicts.hpp"
 
 namespace cs {
 namespace {
@@ -63,6 +64,16 @@ ConeFan::ConeFan(double critical_angle_deg)
     for (const auto& d : dirs) cos_min = std::min(cos_min, -d.z);
 }
 
+namespace {
+
+// segment_hits(a, b) for a fan direction's reach from a node, remembered: the three ways a tree
+// grows from the same leaves ask it of the same nodes.
+bool reach_hits(const ModelQuery& model, const Vec3& a, const Vec3& b) {
+    return model.verdict(tree_question(TreeVerdict::fan_reach, {a.x, a.y, a.z, b.x, b.y, b.z}), [&] { return model.segment_hits(a, b); });
+}
+
+}  // namespace
+
 void collect_contacts(const CandidateContext& cx, const Vec3& a, double reach, std::vector<char>* skipped,
                       const std::vector<char>* only, std::vector<Candidate>& out) {
     const auto& fan = cx.fan.dirs;
@@ -71,7 +82,7 @@ void collect_contacts(const CandidateContext& cx, const Vec3& a, double reach, s
         if (i > 0 && !slanted) break;
         if (only && !(*only)[i]) continue;
         const Vec3& d = fan[i];
-        if (i > 0 && std::isfinite(reach) && !cx.model.segment_hits(a, a + d * reach)) {
+        if (i > 0 && std::isfinite(reach) && !reach_hits(cx.model, a, a + d * reach)) {
             if (skipped) (*skipped)[i] = 1;
             continue;
         }

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "query/model_query.hpp"
+#include "tree/verdicts.hpp"
 
 namespace cs {
 namespace {
@@ -199,24 +200,28 @@ std::optional<Vec3> clear_tip_foot(const ModelQuery& model, const Vec3& foot, co
 }
 
 bool square_is_clear(const ModelQuery& model, const Vec3& c, double w) {
-    const auto sq = square_points(c, w);
+    return model.verdict(tree_question(TreeVerdict::square, {c.x, c.y, c.z, w}), [&] {
+        const auto sq = square_points(c, w);
     // The edges first: they are cheap, and one that hits decides without the costlier inside test.
-    for (size_t i = 1; i < sq.size(); ++i)
-        if (model.segment_hits(sq[i], sq[i % 4 + 1])) return false;
-    // No edge crosses the surface: the four corners lie on one side of a closed surface, and one
-    // inside test answers for all of them.
-    return !model.inside(sq[1]);
+        for (size_t i = 1; i < sq.size(); ++i)
+            if (model.segment_hits(sq[i], sq[i % 4 + 1])) return false;
+        // No edge crosses the surface: the four corners lie on one side of a closed surface, and
+        // one inside test answers for all of them.
+        return !model.inside(sq[1]);
+    });
 }
 
 bool prism_is_clear(const ModelQuery& model, const Vec3& bottom, double wb, const Vec3& top, double wt) {
-    const auto lo = square_points(bottom, wb), hi = square_points(top, wt);
-    for (size_t i = 0; i < lo.size(); ++i)
-        if (model.segment_hits(lo[i], hi[i])) return false;
-    for (size_t i = 1; i < lo.size(); ++i) {
-        size_t j = i % 4 + 1;
-        if (model.segment_hits(lo[i], lo[j]) || model.segment_hits(hi[i], hi[j])) return false;
-    }
-    return true;
+    return model.verdict(tree_question(TreeVerdict::prism, {bottom.x, bottom.y, bottom.z, wb, top.x, top.y, top.z, wt}), [&] {
+        const auto lo = square_points(bottom, wb), hi = square_points(top, wt);
+        for (size_t i = 0; i < lo.size(); ++i)
+            if (model.segment_hits(lo[i], hi[i])) return false;
+        for (size_t i = 1; i < lo.size(); ++i) {
+            size_t j = i % 4 + 1;
+            if (model.segment_hits(lo[i], lo[j]) || model.segment_hits(hi[i], hi[j])) return false;
+        }
+        return true;
+    });
 }
 
 PillarPlacement fit_pillar(const ModelQuery& model, const Vec3& sample, const Params& p) {

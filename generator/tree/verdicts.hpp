@@ -1,7 +1,7 @@
 // The verdicts the tree stage has the model remember (ModelQuery::verdict), each kind's question
-// opening with its own value: within a job the same strut is judged again and again (the three
-// ways a tree grows from the same leaves, every region priced over the same samples), and each
-// verdict takes several questions to the model.
+// opening with its own value: within a job the same strut, square or prism is judged again and
+// again (the three ways a tree grows from the same leaves, every region priced over the same
+// samples), and each verdict takes several questions to the model.
 #pragma once
 
 #include <cstddef>
@@ -11,7 +11,7 @@
 
 namespace cs {
 
-enum class TreeVerdict { strut = 1 };
+enum class TreeVerdict { strut = 1, square, prism, fan_reach };
 
 // The question: the kind, then the values the verdict depends on besides the model (at most 11).
 inline ModelQuery::Question tree_question(TreeVerdict kind, std::initializer_list<double> values) {
