@@ -460,8 +460,16 @@ Vec3 ModelQuery::closest_point(const Vec3& p) const {
     return remembered(memo_->mutex, memo_->closest, key(p), [&] { return out_of_index(vec(impl_->closest_point(pt(in_index(p))))); });
 }
 
-bool ModelQuery::verdict(const Question& question, const std::function<bool()>& decide) const {
-    return remembered(memo_->mutex, memo_->verdicts, question, decide);
+std::optional<bool> ModelQuery::known_verdict(const Question& question) const {
+    std::lock_guard lock(memo_->mutex);
+    const bool* known = memo_->verdicts.find(question);
+    return known ? std::optional<bool>{*known} : std::nullopt;
+}
+
+bool ModelQuery::keep_verdict(const Question& question, bool answer) const {
+    std::lock_guard lock(memo_->mutex);
+    memo_->verdicts.emplace(question, answer);
+    return answer;
 }
 
 bool ModelQuery::inside(const Vec3& p) const {

@@ -6,7 +6,6 @@
 
 #include <array>
 #include <cstddef>
-#include <functional>
 #include <memory>
 #include <optional>
 
@@ -54,7 +53,11 @@ public:
     // again and again (the three ways a tree grows from the same leaves, each region priced over
     // the same samples: three quarters of extruder_idler's struts are asked again).
     using Question = std::array<double, 12>;
-    bool verdict(const Question& question, const std::function<bool()>& decide) const;
+    template <typename Decide>
+    bool verdict(const Question& question, Decide&& decide) const {
+        if (const std::optional<bool> known = known_verdict(question)) return *known;
+        return keep_verdict(question, decide());  // the first answer kept, should two threads race
+    }
 
     const Mesh& mesh() const { return model_; }
 
@@ -79,6 +82,8 @@ private:
     Vec3 in_index(const Vec3& p) const { return frame_ ? frame_->to_index(p) : p; }
     Vec3 out_of_index(const Vec3& q) const { return frame_ ? frame_->from_index(q) : q; }
     std::optional<RayHit> first_hit_in_index(const Vec3& origin, const Vec3& dir) const;
+    std::optional<bool> known_verdict(const Question& question) const;
+    bool keep_verdict(const Question& question, bool answer) const;
     std::optional<RayHit> first_hit_uncached(const Vec3& origin, const Vec3& dir) const;
     bool inside_uncached(const Vec3& p) const;
 };
