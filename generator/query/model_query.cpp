@@ -62,6 +62,7 @@ struct RayParameter {
 // The BVH is built only once the model has been asked about a quarter as many segment and ray
 // questions as it has triangles (building costs about as much as that many questions save; a big
 // scan is asked few). Until then CGAL's tree answers them: the answers are the same either way.
+// A small model's is built at its first question (kBuildAtOnce).
 struct ModelQuery::Impl {
     const Mesh& mesh;  // the indexed mesh, which outlives every query sharing this index
     std::vector<Triangle3> triangles;
@@ -82,9 +83,17 @@ private:
     mutable std::atomic<const TriangleBvh*> ready_{nullptr};
 };
 
+// Below this many triangles the BVH is built at the first question: it builds in a few
+// milliseconds, and a small part is asked many times its triangles (extruder_idler's 3,558 faces
+// one to six times over on each pose the orientation search judges), where waiting for a
+// quarter of them cost every pose about 13 M instructions of CGAL's slower answers (extruder_idler
+// 1.079 -> 1.017 G). A big scan keeps the wait: igea's final pose asks a quarter of its 268,686
+// faces less a few thousand, and building its BVH at an eighth cost it 7 % more instructions.
+constexpr std::size_t kBuildAtOnce = 16384;
+
 const TriangleBvh* ModelQuery::Impl::bvh() const {
     if (const TriangleBvh* b = ready_.load(std::memory_order_acquire)) return b;
-    if (asked_.fetch_add(1, std::memory_order_relaxed) < triangles.size() / 4) return nullptr;
+    if (triangles.size() >= kBuildAtOnce && asked_.fetch_add(1, std::memory_order_relaxed) < triangles.size() / 4) return nullptr;
     std::call_once(built_, [&] {
         bvh_ = std::make_unique<const TriangleBvh>(mesh);
         ready_.store(bvh_.get(), std::memory_order_release);
