@@ -18,10 +18,11 @@ namespace {
 // strut_is_clear's verdict, asked of the model every time.
 bool strut_is_clear_now(const ModelQuery& model, const Vec3& a, double wa, const Vec3& b, double wb, double clearance,
                         bool onto_model, double joint_reach) {
-    if (model.segment_hits(a, b)) return false;
     // The strut's own edges, and the same pushed out by the clearance (a bump of the model can
-    // slip between the outer lines and still cut the strut, so both are asked).
-    for (double c : {0.0, clearance}) {
+    // slip between the outer lines and still cut the strut, so both are asked), then its axis.
+    // The verdict is all of them; the outer edges first, as the likeliest to meet the model.
+    for (double c : {clearance, 0.0}) {
+        if (c == clearance && clearance == 0.0) continue;  // asked once, as the strut's own
         double ra = 0.5 * wa + c, rb = 0.5 * wb + c;
         // The built strut reaches past b into its joint: onto the model, that end must stay clear too.
         const Vec3 b_end = onto_model && c == 0.0 ? b + normalized(b - a) * joint_reach : b;
@@ -29,8 +30,8 @@ bool strut_is_clear_now(const ModelQuery& model, const Vec3& a, double wa, const
             Vec3 ea = a + Vec3{sx * ra, sy * ra, 0}, eb = b_end + Vec3{sx * rb, sy * rb, 0};
             if (model.segment_hits(ea, eb)) return false;
         }
-        if (clearance == 0.0) break;
     }
+    if (model.segment_hits(a, b)) return false;
     if (onto_model) {
         // The strut's foot hangs a tip's length above the model: a ridge of the model can rise
         // between its edges into the foot's square. Spokes across the square catch it.
