@@ -202,7 +202,7 @@ std::optional<Vec3> clear_tip_foot(const ModelQuery& model, const Vec3& foot, co
 bool square_is_clear(const ModelQuery& model, const Vec3& c, double w) {
     return model.verdict(tree_question(TreeVerdict::square, {c.x, c.y, c.z, w}), [&] {
         const auto sq = square_points(c, w);
-    // The edges first: they are cheap, and one that hits decides without the costlier inside test.
+        // The edges first: they are cheap, and one that hits decides without the costlier inside test.
         for (size_t i = 1; i < sq.size(); ++i)
             if (model.segment_hits(sq[i], sq[i % 4 + 1])) return false;
         // No edge crosses the surface: the four corners lie on one side of a closed surface, and

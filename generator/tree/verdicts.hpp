@@ -4,8 +4,8 @@
 // samples), and each verdict takes several questions to the model.
 #pragma once
 
+#include <array>
 #include <cstddef>
-#include <initializer_list>
 
 #include "query/model_query.hpp"
 
@@ -13,12 +13,14 @@ namespace cs {
 
 enum class TreeVerdict { strut = 1, square, prism, fan_reach };
 
-// The question: the kind, then the values the verdict depends on besides the model (at most 11).
-inline ModelQuery::Question tree_question(TreeVerdict kind, std::initializer_list<double> values) {
+// The question: the kind, then the values the verdict depends on besides the model (at most 11,
+// checked when it compiles).
+template <std::size_t N>
+ModelQuery::Question tree_question(TreeVerdict kind, const double (&values)[N]) {
     ModelQuery::Question q{};
+    static_assert(N < std::tuple_size_v<ModelQuery::Question>, "a question holds its kind and at most 11 values");
     q[0] = static_cast<double>(kind);
-    std::size_t i = 1;
-    for (const double v : values) q[i++] = v;
+    for (std::size_t i = 0; i < N; ++i) q[i + 1] = values[i];
     return q;
 }
 
