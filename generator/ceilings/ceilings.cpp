@@ -153,6 +153,11 @@ double walls_seconds(const SlicerRoute& r, const std::vector<CeilingWall>& walls
 
 namespace {
 
+// Is the layout the hybrid's (ceilings/hybrid.hpp)? support_ceilings and support_hybrid share it;
+// support_ceilings lays out with hybrid_height set to 0 (its walls stand on the bed or a floor),
+// support_hybrid with the user's (its pieces stand on the tree, that far under their tops).
+bool lays_out_hybrid(const Params& p) { return p.hybrid_height > 0; }
+
 // Stations along a wall (mm): fine enough that a round ceiling's top steps by well under a layer
 // over a bore's flat crown, coarse enough to keep the SCAD small.
 constexpr double kStation = 0.5;
@@ -204,7 +209,7 @@ constexpr double kLevelFloor = 0.95;
 // Where a wall under x may stand: the bed (0), or a level face of the model a gap below... the
 // floor's height; nothing where the fall lands on a slope or less than a wall's room is left.
 std::optional<double> floor_under(const ModelQuery& q, const Vec3& x, const Params& p) {
-    if (p.hybrid_height > 0) return hybrid_floor(q, x, p);  // the hybrid's feet hang on the tree
+    if (lays_out_hybrid(p)) return hybrid_floor(q, x, p);  // the hybrid's feet hang on the tree
     auto hit = q.first_hit(x - Vec3{0, 0, 1e-3}, {0, 0, -1});
     if (!hit) return 0.0;
     if (!p.supports_on_model) return std::nullopt;  // --buildplate-only: the bed or nothing
@@ -324,7 +329,7 @@ std::optional<std::pair<double, double>> station_of(const ModelQuery& q, const X
     const double half = 0.5 * thickness + tip_side_clearance(p), rise = same_surface_rise(p, p.sampling_distance);
     const Vec3 along{across.y, -across.x, 0};  // a wall may end at this station: clearance beyond it too
     const double side = tip_side_clearance(p);
-    const bool walls = p.hybrid_height <= 0;
+    const bool walls = !lays_out_hybrid(p);
     const double edge = 0.5 * thickness;
     double lowest = INFINITY, floor_lo = INFINITY, floor_hi = -INFINITY, beside = INFINITY;
     const std::array<Vec3, 7> offsets{Vec3{}, across * -half, across * half, along * side, along * -side, across * -edge, across * edge};
@@ -351,7 +356,7 @@ std::optional<std::pair<double, double>> station_of(const ModelQuery& q, const X
         floor_lo = std::min(floor_lo, *floor), floor_hi = std::max(floor_hi, *floor);
     }
     const double top = std::min(lowest - p.gap, beside);
-    if (p.hybrid_height > 0) return std::pair{top - p.hybrid_height, top};  // the foot follows the top
+    if (lays_out_hybrid(p)) return std::pair{top - p.hybrid_height, top};  // the foot follows the top
     if (floor_hi - floor_lo > p.layer_height) return std::nullopt;
     if (top - floor_hi < touching_space(p)) return std::nullopt;
     return std::pair{floor_hi, top};
@@ -386,16 +391,17 @@ std::optional<Station> station(const ModelQuery& q, const XyGrid<std::size_t>& r
 constexpr double kMostCrossed = 25;
 
 // May the wall go on at `top` over `floor`, `thickness` wide, from station u_from to u_to of the
-// row at v, where no station fits? The hybrid's piece (p.hybrid_height > 0) only across what one of
-// its pieces spans from its foot (cut_at_feet: twice the long top): a longer crossing stands a
-// foot, a tip of the tree, under the hole, holding nothing (a motor mount's 22 mm bore, crossed
-// whole, printed slower on both slicers; within one piece faster on both). Where nothing of the model comes within a gap over that top
-// and a side clearance beside it, the floor is the same all along, and the model right above is
-// the ceiling the wall holds (within a gap and a layer, as contact_above finds it), nothing (a hole
-// through it) or no overhang (nothing the tree must still reach from below).
+// row at v, where no station fits? Where nothing of the model comes within a gap over that top and
+// a side clearance beside it, the floor is the same all along, and the model right above is the
+// ceiling the wall holds (within a gap and a layer, as contact_above finds it), nothing (a hole
+// through it) or no overhang (nothing the tree must still reach from below). Walls cross up to
+// kMostCrossed; the hybrid's piece (lays_out_hybrid) only what one of its pieces spans from its
+// foot (cut_at_feet: twice the long top): a longer crossing stands a foot, a tip of the tree, under
+// the hole, holding nothing (a motor mount's 22 mm bore, crossed whole, printed slower on both
+// slicers; within one piece, faster on both).
 bool may_cross(const ModelQuery& q, const Frame& f, double v, double u_from, double u_to, double top, double floor,
                double thickness, const Params& p, double overhang_nz) {
-    const double most = p.hybrid_height > 0 ? 2 * long_top(p, thickness) : kMostCrossed;  // walls: on the bed
+    const double most = lays_out_hybrid(p) ? 2 * long_top(p, thickness) : kMostCrossed;  // walls: on the bed
     if (u_to - u_from > most || top - floor < touching_space(p)) return false;
     const double half = 0.5 * thickness + tip_side_clearance(p), over = top + 0.5 * p.gap, lowest = floor + 1e-3;
     const int n = static_cast<int>(std::ceil((u_to - u_from) / kStation));
@@ -406,7 +412,7 @@ bool may_cross(const ModelQuery& q, const Frame& f, double v, double u_from, dou
             if (q.segment_hits({c.x, c.y, lowest}, {c.x, c.y, over})) return false;
             if (off == 0) {
                 const auto under = floor_under(q, {c.x, c.y, top + p.gap}, p);
-                if (!under || (p.hybrid_height <= 0 && std::abs(*under - floor) > 0.5 * p.layer_height)) return false;
+                if (!under || (!lays_out_hybrid(p) && std::abs(*under - floor) > 0.5 * p.layer_height)) return false;
             }
             if (auto hit = q.first_hit(c, {0, 0, 1}); hit && hit->point.z - top > p.gap + p.layer_height) {
                 const Vec3 nrm = face_normal_unnormalized(q.mesh(), q.mesh().faces[hit->face]);
@@ -1432,11 +1438,11 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
             for (std::size_t i : r.samples)
                 if (walls_carry(surface, l.tops, samples[i].p, carry)) l.carried.push_back(i);
                 else left.push_back(i);
-            if (prefer_near && p.hybrid_height <= 0) drop_idle_stubs(q, surface, samples, p, l);
+            if (prefer_near && !lays_out_hybrid(p)) drop_idle_stubs(q, surface, samples, p, l);
             // Walls only: the hybrid's pieces each add a foot to the tree, and its regions are
             // priced against their own tree alone; with this the wheel at 80 mm got a hybrid its
             // whole tree printed slower (Cura 29.4 -> 32.4 min, PrusaSlicer 21.8 -> 23.5).
-            if (p.hybrid_height <= 0) release_held(surface, l.tops, samples, tip_at, left, l.carried, l.relied, l.released, carry, p);
+            if (!lays_out_hybrid(p)) release_held(surface, l.tops, samples, tip_at, left, l.carried, l.relied, l.released, carry, p);
             for (std::size_t i : left) l.left.push_back(samples[i]);
             return l;
         };
@@ -1506,7 +1512,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         // tree for the whole, and on the tuning set, the validation parts and the examples (both
         // poses) one such region was cheaper in the whole, by 0.1 % and 0.3 % (the wheel at 80 mm).
         const bool contested = (cost->first < tree_cura) != (cost->second < tree_prusa);
-        if (!taken && (p.hybrid_height <= 0 || !contested)) continue;
+        if (!taken && (!lays_out_hybrid(p) || !contested)) continue;
         const double lines_cura = walls_route_seconds(kCuraRoute, best->w, p), lines_prusa = walls_route_seconds(kPrusaRoute, best->w, p);
         priced.push_back({std::move(*best), lines_cura, lines_prusa, tree_cura, tree_prusa, cost->first, cost->second, taken});
     }
@@ -1515,7 +1521,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
     // wheel at 80 mm). So the regions' choices are weighed in the whole, one region at a time in
     // their order: its choice flips where the whole (the taken regions' walls and the tree for all
     // the samples they leave, with their feet) is then faster on both routes.
-    if (p.hybrid_height > 0 && !priced.empty()) {
+    if (lays_out_hybrid(p) && !priced.empty()) {
         auto whole = [&](const std::vector<Priced>& choice) {
             std::vector<CeilingWall> pieces;
             double cura = 0, prusa = 0;

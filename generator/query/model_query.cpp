@@ -265,12 +265,14 @@ public:
         const std::size_t at = index_.find(KeyHash{}(k), [&](std::size_t i) { return BitsEqual{}(entries_[i].key, k); });
         return at == FlatIndex::npos ? nullptr : &entries_[at].value;
     }
-    // Keeps the first answer to a question (as std::unordered_map::emplace).
-    void emplace(const Key<N>& k, const V& v) {
-        const bool fresh = index_.insert(
+    // Keeps the first answer to a question (as std::unordered_map::emplace) and gives it back: `v`,
+    // or the one kept before it when two threads raced to answer the same question.
+    V emplace(const Key<N>& k, const V& v) {
+        const auto [at, fresh] = index_.insert(
             KeyHash{}(k), entries_.size(), [&](std::size_t i) { return BitsEqual{}(entries_[i].key, k); },
-            [&](std::size_t i) { return std::uint64_t(KeyHash{}(entries_[i].key)); }).second;
+            [&](std::size_t i) { return std::uint64_t(KeyHash{}(entries_[i].key)); });
         if (fresh) entries_.push_back({k, v});
+        return entries_[at].value;
     }
 
 private:
@@ -294,8 +296,7 @@ V remembered(std::mutex& m, Answers<N, V>& answers, const Key<N>& k, F f) {
     }
     V v = f();
     std::lock_guard lock(m);
-    answers.emplace(k, v);
-    return v;
+    return answers.emplace(k, v);
 }
 
 }  // namespace
@@ -477,8 +478,7 @@ std::optional<bool> ModelQuery::known_verdict(const Question& question) const {
 
 bool ModelQuery::keep_verdict(const Question& question, bool answer) const {
     std::lock_guard lock(memo_->mutex);
-    memo_->verdicts.emplace(question, answer);
-    return answer;
+    return memo_->verdicts.emplace(question, answer);
 }
 
 bool ModelQuery::inside(const Vec3& p) const {

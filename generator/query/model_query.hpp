@@ -48,15 +48,14 @@ public:
 
     // A verdict a caller decides from this model's answers alone, remembered like the model's own
     // answers by the question's exact bits: `question` holds everything besides the model that the
-    // verdict depends on, its first value telling the callers' kinds of question apart. A strut's
-    // clearance takes a dozen questions to the model, and within a job the same strut is judged
-    // again and again (the three ways a tree grows from the same leaves, each region priced over
-    // the same samples: three quarters of extruder_idler's struts are asked again).
+    // verdict depends on, its first value telling the callers' kinds of question apart (the tree's:
+    // tree/verdicts.hpp, which says why they are asked again). `decide` runs only for a question not
+    // asked before; should two threads race on one, both get the answer kept first.
     using Question = std::array<double, 12>;
     template <typename Decide>
     bool verdict(const Question& question, Decide&& decide) const {
         if (const std::optional<bool> known = known_verdict(question)) return *known;
-        return keep_verdict(question, decide());  // the first answer kept, should two threads race
+        return keep_verdict(question, decide());
     }
 
     const Mesh& mesh() const { return model_; }
