@@ -117,6 +117,27 @@ TEST(Ceilings, WallsOnlyWhereTheTimeModelFindsThemFasterOnBothSlicers) {
     EXPECT_EQ(high.ceilings.rest.size(), high.samples.samples.size());
 }
 
+// A bore through a block (tests/data/ceilings/bore_ridge.scad): walls could stand under the ridge
+// along its crown, on the nearly level facets of its floor, but not under the crown's sloping sides,
+// which go to the tree. Walls down the middle split that tree in two. Until 2026-11-29 a region was
+// priced against its own tree alone, the walls won, and the whole printed slower than the trees
+// alone: estimated 378 / 303 s against 282 / 286 s (Cura / PrusaSlicer), sliced 5.7 / 7.0 min
+// against 4.6 / 5.5 min. Priced with the samples beside it, the region keeps its tree: what the
+// ceilings stage chooses is no dearer on either route than trees alone.
+TEST(Ceilings, WallsThatWouldSplitTheTreeBesideThemArePricedWithIt) {
+    Job job;  // as a user runs it
+    job.input = test::source_dir() + "/tests/data/ceilings/bore_ridge.stl";
+    job.orient = "keep";
+    const Result chosen = run_job(job);
+    job.params.ceiling_span = 0;  // trees only
+    const Result trees = run_job(job);
+    const SlicerCost &c = chosen.supports.slicer_cost, &t = trees.supports.slicer_cost;
+    EXPECT_LE(c.cura_seconds, t.cura_seconds * (1 + 1e-9));
+    EXPECT_LE(c.prusa_seconds, t.prusa_seconds * (1 + 1e-9));
+    const CheckResult check = check_supports(chosen.model, chosen.supports.mesh, job.params, {});
+    EXPECT_TRUE(check.ok()) << check.summary();
+}
+
 // A thin column under each sample, from the model or bed below up to a gap under it: a contact
 // exactly where the sample is, as the sampling counts it.
 Mesh ideal_tips(const Mesh& model, const std::vector<Sample>& samples, const Params& p) {
