@@ -515,7 +515,13 @@ bool ModelQuery::inside_uncached(const Vec3& p) const {
     return votes >= 2;
 }
 
-std::size_t count_self_intersections(const Mesh& mesh, std::size_t limit) {
+namespace {
+
+// Thrown by a count that reached its limit: enough to warn, the search stops early.
+struct CountFull {};
+
+// CGAL's own count, over a Surface_mesh of the faces it can take (a non-manifold face is skipped).
+std::size_t count_in_surface_mesh(const Mesh& mesh, std::size_t limit) {
     using SM = CGAL::Surface_mesh<Point>;
     SM sm;
     // Room for a closed mesh's elements at once (an edge to two faces): no array is copied as it
@@ -528,14 +534,131 @@ std::size_t count_self_intersections(const Mesh& mesh, std::size_t limit) {
         // Non-manifold input cannot become a Surface_mesh face; such faces are skipped here.
         sm.add_face(vs[f[0]], vs[f[1]], vs[f[2]]);
     }
-    struct Full {};
     std::size_t count = 0;
     auto counter = boost::make_function_output_iterator([&](const auto&) {
-        if (++count >= limit) throw Full{};  // enough to warn: stop the search early
+        if (++count >= limit) throw CountFull{};
     });
     try {
         CGAL::Polygon_mesh_processing::self_intersections(sm, counter);
-    } catch (const Full&) {
+    } catch (const CountFull&) {
+    }
+    return count;
+}
+
+// Does a Surface_mesh built face by face in order take every face of `mesh`, each as given? So it
+// does when the mesh is closed, oriented and manifold: around every vertex its faces form one
+// closed fan, each edge leaving the vertex once and coming in once (Euler::add_face refuses a
+// face only at an edge or vertex that is already closed, or at a repeated corner).
+bool surface_mesh_takes_every_face(const Mesh& mesh) {
+    const std::size_t nv = mesh.vertices.size();
+    // Each vertex's corners, grouped by vertex: the corner's edge leaving the vertex (to `out`) and
+    // its edge coming in (from `in`).
+    std::vector<std::uint32_t> first(nv + 1, 0);
+    for (const auto& f : mesh.faces) {
+        if (f[0] == f[1] || f[1] == f[2] || f[0] == f[2]) return false;
+        for (int k = 0; k < 3; ++k) ++first[f[k] + 1];
+    }
+    for (std::size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
+    std::vector<std::uint32_t> out(3 * mesh.faces.size()), in(out.size()), at(first.begin(), first.end() - 1);
+    for (const auto& f : mesh.faces)
+        for (int k = 0; k < 3; ++k) {
+            const std::uint32_t c = at[f[k]]++;
+            out[c] = f[(k + 1) % 3], in[c] = f[(k + 2) % 3];
+        }
+    // Around vertex v, the corner whose edge leaves to w is leaving[w] while seen[w] == v (marks
+    // that need no clearing between vertices); the fan's next corner follows that edge back in.
+    constexpr std::uint32_t kNone = UINT32_MAX;
+    std::vector<std::uint32_t> seen(nv, kNone), leaving(nv), next;
+    for (std::uint32_t v = 0; v < nv; ++v) {
+        const std::uint32_t begin = first[v], n = first[v + 1] - begin;
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const std::uint32_t w = out[begin + i];
+            if (seen[w] == v) return false;  // an edge leaving twice
+            seen[w] = v, leaving[w] = i;
+        }
+        next.assign(n, kNone);
+        for (std::uint32_t j = 0; j < n; ++j) {
+            const std::uint32_t w = in[begin + j];
+            if (seen[w] != v) return false;  // an edge coming in with no edge going back: open
+            std::uint32_t& after = next[leaving[w]];
+            if (after != kNone) return false;  // an edge coming in twice
+            after = j;
+        }
+        // One fan: following the corners from the first visits all of them before coming back.
+        std::uint32_t steps = 0;
+        for (std::uint32_t i = 0; steps < n;) {
+            i = next[i], ++steps;
+            if (i == 0) break;
+        }
+        if (steps != n) return false;
+    }
+    return true;
+}
+
+// CGAL's do_faces_intersect (Polygon_mesh_processing/self_intersections.h) for faces f and g of a
+// mesh a Surface_mesh takes whole (surface_mesh_takes_every_face): there a face's halfedge runs
+// from its corner 2 to its corner 0 (Euler::add_face), so the same predicates are asked of the
+// same points in the same order, and the face across an edge is the one with the edge reversed.
+bool faces_cross(const Mesh& mesh, const Triangle& f, const Triangle& g) {
+    auto at = [&](std::uint32_t v) { return pt(mesh.vertices[v]); };
+    // The edges in CGAL's order from the face's halfedge: corner (i + 2) % 3 to corner i.
+    for (int i = 0; i < 3; ++i) {
+        const std::uint32_t from = f[(i + 2) % 3], to = f[i];
+        for (int j = 0; j < 3; ++j) {
+            if (g[j] != to || g[(j + 1) % 3] != from) continue;
+            // A shared edge: an overlap only where the two lie in one plane and fold onto each other.
+            const Point across = at(g[(j + 2) % 3]);
+            return CGAL::coplanar(at(f[i]), at(f[(i + 1) % 3]), at(f[(i + 2) % 3]), across) &&
+                   CGAL::coplanar_orientation(at(f[(i + 2) % 3]), at(f[i]), at(f[(i + 1) % 3]), across) == CGAL::POSITIVE;
+        }
+    }
+    const Triangle3 tf(at(f[0]), at(f[1]), at(f[2])), tg(at(g[0]), at(g[1]), at(g[2]));
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            if (f[i] != g[j]) continue;
+            // A shared corner: does either face's opposite side pass through the other?
+            const K::Segment_3 sf(at(f[(i + 1) % 3]), at(f[(i + 2) % 3])), sg(at(g[(j + 1) % 3]), at(g[(j + 2) % 3]));
+            return K().do_intersect_3_object()(tf, sg) || K().do_intersect_3_object()(tg, sf);
+        }
+    return K().do_intersect_3_object()(tf, tg);
+}
+
+}  // namespace
+
+// CGAL's self_intersections on a Surface_mesh of the model asks, of every pair of faces whose
+// boxes meet (box_self_intersection_d over boxes in face order), whether they truly cross. Where
+// that mesh would take every face as given (a closed manifold, as repair leaves most models), the
+// same boxes are searched the same way here and the same question asked of the faces themselves:
+// the same pairs, in the same order, with the same answers, without building the Surface_mesh
+// and walking its halfedges (most of the count's time on a big scan).
+std::size_t count_self_intersections(const Mesh& mesh, std::size_t limit) {
+    if (!surface_mesh_takes_every_face(mesh)) return count_in_surface_mesh(mesh, limit);
+    using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, std::uint32_t, CGAL::Box_intersection_d::ID_FROM_BOX_ADDRESS>;
+    std::size_t count = 0;
+    auto found = [&] {
+        if (++count >= limit) throw CountFull{};
+    };
+    try {
+        // A degenerate face is a pair of its own (as CGAL reports it) and gets no box.
+        std::vector<Box> boxes;
+        boxes.reserve(mesh.faces.size());
+        for (std::uint32_t fi = 0; fi < mesh.faces.size(); ++fi) {
+            const Triangle& f = mesh.faces[fi];
+            const Point p = pt(mesh.vertices[f[0]]), q = pt(mesh.vertices[f[1]]), r = pt(mesh.vertices[f[2]]);
+            if (CGAL::collinear(p, q, r)) found();
+            else boxes.push_back(Box(p.bbox() + q.bbox() + r.bbox(), fi));
+        }
+        std::vector<const Box*> box_ptr;
+        box_ptr.reserve(boxes.size());
+        for (const Box& b : boxes) box_ptr.push_back(&b);
+        const std::ptrdiff_t cutoff = 2000;  // CGAL's own
+        CGAL::box_self_intersection_d<CGAL::Sequential_tag>(
+            box_ptr.begin(), box_ptr.end(),
+            [&](const Box* b, const Box* c) {
+                if (faces_cross(mesh, mesh.faces[b->info()], mesh.faces[c->info()])) found();
+            },
+            cutoff);
+    } catch (const CountFull&) {
     }
     return count;
 }
