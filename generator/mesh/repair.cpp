@@ -5,7 +5,6 @@
 #include <numbers>
 #include <cstring>
 #include <numeric>
-#include <unordered_map>
 #include <utility>
 
 #include "core/errors.hpp"
@@ -55,14 +54,16 @@ bool inside_by_parity(const Mesh& m, const std::vector<size_t>& fs, const Vec3& 
 std::vector<int> face_components(const Mesh& m, int& count) {
     DisjointSets ds(m.vertices.size());
     for (const auto& f : m.faces) ds.unite(f[0], f[1]), ds.unite(f[0], f[2]);
-    std::unordered_map<int, int> ids;
+    // Components numbered in order of their first face; a root is a vertex, so its number is kept
+    // by vertex (no hashing of every face's root).
+    std::vector<int> id_of_root(m.vertices.size(), -1);
     std::vector<int> comp(m.faces.size());
+    count = 0;
     for (size_t i = 0; i < m.faces.size(); ++i) {
-        int root = ds.find(m.faces[i][0]);
-        auto [it, fresh] = ids.emplace(root, static_cast<int>(ids.size()));
-        comp[i] = it->second;
+        int& id = id_of_root[ds.find(m.faces[i][0])];
+        if (id < 0) id = count++;
+        comp[i] = id;
     }
-    count = static_cast<int>(ids.size());
     return comp;
 }
 
@@ -107,12 +108,19 @@ void keep_proper_triangles(const Mesh& raw, const std::vector<std::uint32_t>& re
     }
     // Each triangle's corners in ascending order, with its index: sorted, equal corners are
     // neighbours and the first of them (the lowest index) is the one kept.
+    // Grouped by their smallest corner in one counting pass, then each group sorted: the order of
+    // one sort of them all (by corners, then index), with a few triangles per comparison sort.
+    std::vector<std::uint32_t> end(m.vertices.size() + 1, 0);
+    for (const Triangle& f : kept) ++end[std::min({f[0], f[1], f[2]}) + 1];
+    for (size_t v = 1; v < end.size(); ++v) end[v] += end[v - 1];
     std::vector<std::pair<Triangle, std::uint32_t>> by_corners(kept.size());
     for (std::uint32_t i = 0; i < kept.size(); ++i) {
-        by_corners[i] = {kept[i], i};
-        std::sort(by_corners[i].first.begin(), by_corners[i].first.end());
+        Triangle c = kept[i];
+        std::sort(c.begin(), c.end());
+        by_corners[end[c[0]]++] = {c, i};
     }
-    std::sort(by_corners.begin(), by_corners.end());
+    for (size_t v = 0, begin = 0; v + 1 < end.size(); begin = end[v++])
+        if (end[v] - begin > 1) std::sort(by_corners.begin() + begin, by_corners.begin() + end[v]);
     std::vector<char> duplicate(kept.size(), 0);
     for (size_t i = 1; i < by_corners.size(); ++i)
         if (by_corners[i].first == by_corners[i - 1].first) duplicate[by_corners[i].second] = 1;
