@@ -479,6 +479,24 @@ Mesh parse_mesh(std::string_view bytes, const std::string& format, const std::st
     return m;
 }
 
+namespace {
+
+// Everything `in` holds: a regular file in one read of its size (a scan is tens of megabytes,
+// which a character at a time took most of the loading), then as a stream whatever is left (all
+// of a pipe, or what a file gained since `st` was taken).
+std::string whole_file(std::ifstream& in, const struct stat& st) {
+    std::string bytes;
+    if (S_ISREG(st.st_mode) && st.st_size > 0) {
+        bytes.resize(static_cast<std::size_t>(st.st_size));
+        in.read(bytes.data(), st.st_size);
+        bytes.resize(static_cast<std::size_t>(in.gcount()));
+    }
+    bytes.append(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    return bytes;
+}
+
+}  // namespace
+
 Mesh read_mesh(const std::string& path, bool allow_empty, std::string* contents) {
     struct stat st{};
     if (stat(path.c_str(), &st) != 0)
@@ -492,7 +510,7 @@ Mesh read_mesh(const std::string& path, bool allow_empty, std::string* contents)
              "Use an " + mesh_formats_text() + " file, or an OpenSCAD part (.scad).");
     std::ifstream in(path, std::ios::binary);
     if (!in) fail(path, std::string("cannot read: ") + std::strerror(errno), "Check the file's permissions.");
-    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::string bytes = whole_file(in, st);
     if (in.bad()) fail(path, "read error", "Check the disk and the file.");
     if (bytes.empty()) fail(path, "the file is empty", "Check that the export finished and the file was copied completely.");
     return parse_mesh(bytes, ext, path, allow_empty, contents);
