@@ -95,8 +95,8 @@ TEST(SelfIntersections, CoplanarOverlapsCountAsCgalCounts) {
 }
 
 TEST(SelfIntersections, StopsAtTheLimit) {
-    Mesh m = sphere({0, 0, 0}, 10, 40);
-    add(m, sphere({5, 0, 0}, 10, 40, 0.05));
+    Mesh m = sphere({0, 0, 0}, 10, 120);
+    add(m, sphere({5, 0, 0}, 10, 120, 0.05));
     ASSERT_GT(cgal_count(m, 1000000), 1000u);
     EXPECT_EQ(count_self_intersections(m, 1000), 1000u);
     EXPECT_EQ(count_self_intersections(m, 50), 50u);
