@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <fmt/compile.h>
 #include <fmt/format.h>
 #include <iterator>
@@ -68,15 +70,69 @@ IndexedMesh index_mesh(const Mesh& m) {
     return out;
 }
 
+// Writes x at `out` as fmt's "{:.6f}" does and moves `out` past it, where the digits are certain
+// without fmt's general float formatting (most of writing a scan's 3MF): |x| < 2^33, so x in
+// millionths is exact in 128 bits, rounded to the nearest, and x is not exactly halfway between
+// two millionths (fmt's rule for ties stays fmt's). Otherwise returns false and writes nothing.
+bool write_fixed6(double x, char*& out) {
+    const auto bits = std::bit_cast<std::uint64_t>(x);
+    const int biased = static_cast<int>((bits >> 52) & 0x7ff);
+    if (biased - 1023 >= 33) return false;  // too big, or not finite
+    const std::uint64_t fraction = bits & ((std::uint64_t{1} << 52) - 1);
+    const std::uint64_t mantissa = biased ? fraction | (std::uint64_t{1} << 52) : fraction;
+    const int shift = 1075 - (biased ? biased : 1);  // |x| = mantissa / 2^shift, shift > 19 here
+    const unsigned __int128 scaled = static_cast<unsigned __int128>(mantissa) * 1000000u;  // < 2^73
+    std::uint64_t millionths = 0;  // shift >= 127: |x| under 2^-54, far from half a millionth
+    if (shift < 127) {
+        const unsigned __int128 half = static_cast<unsigned __int128>(1) << (shift - 1);
+        const unsigned __int128 rest = scaled & ((half << 1) - 1);
+        if (rest == half) return false;
+        millionths = static_cast<std::uint64_t>(scaled >> shift) + (rest > half);
+    }
+    char* p = out;
+    if (bits >> 63) *p++ = '-';  // as fmt: the sign even where the digits round to zero
+    std::uint64_t whole = millionths / 1000000;
+    char digits[20];
+    int n = 0;
+    do digits[n++] = static_cast<char>('0' + whole % 10), whole /= 10;
+    while (whole);
+    while (n) *p++ = digits[--n];
+    *p++ = '.';
+    for (std::uint32_t d = 100000, part = static_cast<std::uint32_t>(millionths % 1000000); d; d /= 10)
+        *p++ = static_cast<char>('0' + part / d % 10);
+    out = p;
+    return true;
+}
+
+// One vertex's line, written by write_fixed6 where it can (the same bytes), else by fmt.
+void append_vertex(fmt::memory_buffer& buf, const Vec3& p) {
+    char line[128];
+    char* at = line;
+    auto text = [&at](const char* s) {
+        const std::size_t n = std::strlen(s);
+        std::memcpy(at, s, n), at += n;
+    };
+    text("<vertex x=\"");
+    if (write_fixed6(p.x, at)) {
+        text("\" y=\"");
+        if (write_fixed6(p.y, at)) {
+            text("\" z=\"");
+            if (write_fixed6(p.z, at)) {
+                text("\"/>\n");
+                buf.append(line, at);
+                return;
+            }
+        }
+    }
+    fmt::format_to(std::back_inserter(buf), FMT_COMPILE("<vertex x=\"{:.6f}\" y=\"{:.6f}\" z=\"{:.6f}\"/>\n"), p.x, p.y, p.z);
+}
+
 // Formatted into a memory buffer and appended in one go: a back_inserter into the string grows
 // it a character at a time, and a scan has hundreds of thousands of these lines.
 void append_vertices(std::string& s, const Mesh& m, const IndexedMesh& im) {
     fmt::memory_buffer buf;
     buf.reserve(60 * im.vertices.size());
-    for (std::uint32_t c : im.vertices) {
-        const auto& p = m.vertices[c];
-        fmt::format_to(std::back_inserter(buf), FMT_COMPILE("<vertex x=\"{:.6f}\" y=\"{:.6f}\" z=\"{:.6f}\"/>\n"), p.x, p.y, p.z);
-    }
+    for (std::uint32_t c : im.vertices) append_vertex(buf, m.vertices[c]);
     s.append(buf.data(), buf.size());
 }
 

@@ -4,9 +4,11 @@
 // (tests/e2e/test_slicers.cpp slices both with the real slicers.)
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <random>
 #include <set>
 
 #include <fmt/format.h>
@@ -309,6 +311,32 @@ TEST(ThreeMF, NamesAreEscapedAndEmptySupportsAreLeftOut) {
     EXPECT_EQ(count(xml, "cura:support_mesh"), 0);
     auto prusa = unzip(encode_3mf_prusa("x", {{"x", model, {}}, {"x supports", none, prusa_support_volume_settings(Params{}, PrusaSupportVolume::NProfile)}}));
     EXPECT_EQ(elements(prusa["Metadata/Slic3r_PE_model.config"], "volume").size(), 1u);
+}
+
+TEST(ThreeMF, VertexCoordinatesAreWrittenAsFmtWritesThem) {
+    // Coordinates threemf.cpp writes without fmt and ones it leaves to fmt (halfway between two
+    // millionths, too big, not finite), each vertex its own: the lines are fmt's "{:.6f}", byte
+    // for byte, in the order the faces first use them.
+    std::vector<double> xs = {0.0,       -0.0,        1e-9,      -1e-9,     4e-7,          -4e-7,         5e-7,
+                              -5e-7,     0.0078125,   -0.0078125, 0.5,      123456.7890125, 999999.9999995, 8589934591.999,
+                              8589934592, -1e10,      1e300,      4.9e-324, -4.9e-324,     2.5e-6,        1.0000005};
+    std::mt19937_64 rng(6);
+    for (int i = 0; i < 3000; ++i) {
+        const double scale = std::ldexp(1.0, static_cast<int>(rng() % 40) - 20);
+        xs.push_back(std::uniform_real_distribution<double>(-1, 1)(rng) * scale);
+        xs.push_back(std::ldexp(static_cast<double>(static_cast<std::int64_t>(rng() % 2000001) - 1000000), -static_cast<int>(rng() % 30)));
+    }
+    Mesh m;  // every vertex apart (its y is its index), three to a face
+    for (std::size_t i = 0; i < xs.size(); ++i)
+        m.vertices.push_back({xs[i], static_cast<double>(i), -xs[i] - 0.25 * static_cast<double>(i)});
+    for (std::uint32_t i = 0; i + 2 < m.vertices.size(); i += 3) m.faces.push_back({i, i + 1, i + 2});
+    m.vertices.resize(3 * m.faces.size());
+    std::string expected;
+    for (const Vec3& v : m.vertices) expected += fmt::format("<vertex x=\"{:.6f}\" y=\"{:.6f}\" z=\"{:.6f}\"/>\n", v.x, v.y, v.z);
+    auto files = unzip(encode_3mf_cura("v", {{"v", m, {}}}));
+    const std::string& xml = files["3D/3dmodel.model"];
+    const std::size_t from = xml.find("<vertices>\n") + std::strlen("<vertices>\n");
+    EXPECT_EQ(xml.substr(from, xml.find("</vertices>") - from), expected);
 }
 
 }  // namespace
