@@ -35,8 +35,12 @@ Vec3 unit_normal(const Mesh& m, const Triangle& t) {
 bool is_apex(const Mesh& m, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     static const double max_cos = std::cos(deg_to_rad(kCapApexDeg));
     const Vec3 u = m.vertices[a] - m.vertices[c], v = m.vertices[b] - m.vertices[c];
+    const double cosine_times_lengths = dot(u, v);
+    // An angle under 90 degrees is no apex, whatever the lengths (max_cos * lengths is not
+    // positive): two corners of most triangles, answered without the two square roots.
+    if (cosine_times_lengths > 0) return false;
     const double lengths = norm(u) * norm(v);
-    return lengths > 0 && dot(u, v) <= max_cos * lengths;
+    return lengths > 0 && cosine_times_lengths <= max_cos * lengths;
 }
 
 bool has_cap(const Mesh& m, const Triangle& t) {
