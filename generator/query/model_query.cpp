@@ -70,7 +70,12 @@ struct ModelQuery::Impl {
     explicit Impl(const Mesh& m) : mesh(m) {}
     // The BVH, or null while too few questions were asked.
     const TriangleBvh* bvh() const;
-    std::optional<RayIntersection> first_intersection(const K::Ray_3& ray) const;
+    // A vertical ray's faces come from `memo`'s columns (defined with Memo).
+    std::optional<RayIntersection> first_intersection(const K::Ray_3& ray, Memo& memo) const;
+    // CGAL's answer from the faces `offer(visit)` offers: every face whose box the ray's line may
+    // touch (first_intersection says why all of them).
+    template <typename Offer>
+    std::optional<RayIntersection> nearest_offered(const K::Ray_3& ray, Offer&& offer) const;
     std::optional<RayIntersection> fallback(const K::Ray_3& ray) const;  // CGAL's tree's answer
     bool segment_hits(const K::Segment_3& segment) const;
     std::vector<const Triangle3*> crossed_faces(const K::Ray_3& ray) const;
@@ -106,19 +111,17 @@ const TriangleBvh* ModelQuery::Impl::bvh() const {
 // box whose rounded entry is not below the best hit so far (so of two hits within rounding either
 // may win), and on a ray lying in a face's plane its intersection may report an overlap behind
 // the ray's start, which it meets only where its tree pairs that face with one the ray crosses.
-// Every face whose box the ray's whole line touches is intersected here as CGAL does it; the
-// nearest is CGAL's answer when it is strictly nearer than any other and its own box lets CGAL's
-// walk reach it before any other hit (CGAL's box entries only shrink up the tree, so every box
-// above it is reached too). Otherwise, and where nothing is certain, CGAL's tree is asked.
-std::optional<RayIntersection> ModelQuery::Impl::first_intersection(const K::Ray_3& ray) const {
-    const TriangleBvh* bvh = this->bvh();
-    // Too few questions yet, or a one-face tree (CGAL's skips its box tests): CGAL's tree answers.
-    if (!bvh || triangles.size() < 2) return fallback(ray);
+// Every face whose box the ray's whole line touches is intersected here as CGAL does it (but
+// those whose intersection is surely empty: first_intersection's vertical rays); the nearest is
+// CGAL's answer when it is strictly nearer than any other and its own box lets CGAL's walk reach
+// it before any other hit (CGAL's box entries only shrink up the tree, so every box above it is
+// reached too). Otherwise, and where nothing is certain, CGAL's tree is asked.
+template <typename Offer>
+std::optional<RayIntersection> ModelQuery::Impl::nearest_offered(const K::Ray_3& ray, Offer&& offer) const {
     const RayParameter param(ray);
-    const K::Vector_3 v = ray.to_vector();
     std::optional<RayIntersection> nearest;
     double best = DBL_MAX, second = DBL_MAX;
-    bvh->along_line(vec(ray.source()), Vec3{v.x(), v.y(), v.z()}, [&](std::uint32_t f) {
+    offer([&](std::uint32_t f) {
         auto x = K().intersect_3_object()(ray, triangles[f]);
         if (!x) return false;
         const double t = boost::apply_visitor([&](const auto& g) { return param(g); }, *x);
@@ -309,7 +312,89 @@ struct ModelQuery::Memo {
     Answers<3, double> distances;
     Answers<3, Vec3> closest;
     Answers<12, bool> verdicts;
+    // The faces a ray straight up or down may meet, by its column's exact x and y (in the index's
+    // frame): those whose boxes the vertical line there touches, as TriangleBvh::along_line offers
+    // them for such a ray from any height, less those it surely misses (surely_beside). Most rays
+    // are vertical, and a column is asked again at other heights (the ceilings' stations ask up,
+    // then down from what they find; regions and layouts ask again): on menger_sponge3 (kept
+    // pose) 231,564 of 420,701 new vertical rays were in a column asked before. Walking the BVH
+    // along the whole line cost more than deciding the faces it offers. Shared, not copied.
+    Answers<2, std::shared_ptr<const std::vector<std::uint32_t>>> columns;
 };
+
+namespace {
+
+// A vertical ray's step (its vector's z, as CGAL's ray holds it: its second point's z less its
+// source's) at least this long: added to any coordinate under kMostCoordinate it changes it, with
+// its own sign (surely_beside).
+constexpr double kLeastVerticalStep = 1e-6;
+constexpr double kMostCoordinate = 1e6;
+
+// Is CGAL's intersection of `t` with every ray straight up or down through (x, y) (vector
+// (0, 0, s), |s| >= kLeastVerticalStep) surely empty: the point lies clearly outside the triangle
+// seen from above, which is clearly not edge-on? CGAL (Ray_3_Triangle_3_intersection.h) reports
+// nothing unless the three orientations of the ray's line (source p, second point q = p + s z)
+// against the edges, orientation(p,q,a,b), (p,q,b,c), (p,q,c,a) (or with q,p: their negations,
+// bit for bit), are none positive, or unless the ray lies in the triangle's plane, where its
+// orientation(a,b,c,a + s z) is zero. For such a ray, with exact zeros in x and y, CGAL's
+// determinant for (p,q,a,b) works out to s times the 2D cross product (a - p) x (b - p) within a
+// rounding under 6 units in the last place of s (|ax - px| |by - py| + |ay - py| |bx - px|), and
+// that for (a,b,c,a + s z) to a nonzero step times (b - a) x (c - a) within as little. So where
+// one edge's cross product is clearly positive, another's clearly negative (beyond 1e-12 of its
+// bound, some 4,500 units in the last place) and the triangle's clearly not zero, CGAL's signs are
+// the exact ones: one test comes out positive whichever way the ray points, and the plane is not
+// the ray's. Coordinates are kept under kMostCoordinate (a step then moves a z) and products
+// clear of underflow.
+bool surely_beside(const Triangle3& t, double x, double y) {
+    constexpr double kClearly = 1e-12, kTiny = 1e-200;
+    const Point &a = t.vertex(0), &b = t.vertex(1), &c = t.vertex(2);
+    for (const Point* v : {&a, &b, &c})
+        if (!(std::abs(v->x()) < kMostCoordinate && std::abs(v->y()) < kMostCoordinate && std::abs(v->z()) < kMostCoordinate))
+            return false;
+    if (!(std::abs(x) < kMostCoordinate && std::abs(y) < kMostCoordinate)) return false;
+    // The sign of u x w where it is clear: +1, -1, or 0 (not clear).
+    auto clear_sign = [&](double ux, double uy, double wx, double wy) {
+        const double cross = ux * wy - uy * wx, bound = std::abs(ux * wy) + std::abs(uy * wx);
+        if (!(bound > kTiny)) return 0;
+        return cross > kClearly * bound ? 1 : cross < -kClearly * bound ? -1 : 0;
+    };
+    if (clear_sign(b.x() - a.x(), b.y() - a.y(), c.x() - a.x(), c.y() - a.y()) == 0) return false;
+    bool positive = false, negative = false;
+    for (const auto& [u, w] : {std::pair{&a, &b}, std::pair{&b, &c}, std::pair{&c, &a}}) {
+        const int s = clear_sign(u->x() - x, u->y() - y, w->x() - x, w->y() - y);
+        positive = positive || s > 0, negative = negative || s < 0;
+    }
+    return positive && negative;
+}
+
+}  // namespace
+
+// CGAL's first_intersection(ray), found from the BVH's few candidates where the answer is certain
+// (nearest_offered).
+std::optional<RayIntersection> ModelQuery::Impl::first_intersection(const K::Ray_3& ray, Memo& memo) const {
+    const TriangleBvh* bvh = this->bvh();
+    // Too few questions yet, or a one-face tree (CGAL's skips its box tests): CGAL's tree answers.
+    if (!bvh || triangles.size() < 2) return fallback(ray);
+    const K::Vector_3 v = ray.to_vector();
+    const Point& o = ray.source();
+    if (v.x() == 0 && v.y() == 0 && std::abs(v.z()) >= kLeastVerticalStep) {
+        // Straight up or down: the line, so the faces along it, are the column's whatever the
+        // height (along_vertical offers what along_line would, in the same order), less those
+        // whose intersection with such a ray is surely empty.
+        const auto faces = remembered(memo.mutex, memo.columns, Key<2>{o.x(), o.y()}, [&] {
+            std::vector<std::uint32_t> along;
+            bvh->along_vertical(o.x(), o.y(), [&](std::uint32_t f) {
+                if (!surely_beside(triangles[f], o.x(), o.y())) along.push_back(f);
+                return false;
+            });
+            return std::make_shared<const std::vector<std::uint32_t>>(std::move(along));
+        });
+        return nearest_offered(ray, [&](auto&& visit) {
+            for (const std::uint32_t f : *faces) visit(f);
+        });
+    }
+    return nearest_offered(ray, [&](auto&& visit) { bvh->along_line(vec(o), Vec3{v.x(), v.y(), v.z()}, visit); });
+}
 
 namespace {
 
@@ -432,7 +517,7 @@ std::optional<RayHit> ModelQuery::first_hit_uncached(const Vec3& origin, const V
 
 std::optional<RayHit> ModelQuery::first_hit_in_index(const Vec3& origin, const Vec3& dir) const {
     const K::Ray_3 ray(pt(origin), K::Vector_3(dir.x, dir.y, dir.z));
-    const auto where = impl_->first_intersection(ray);
+    const auto where = impl_->first_intersection(ray, *memo_);
     if (!where) return std::nullopt;
     Vec3 q;
     if (const Point* p = boost::get<Point>(&where->first)) {

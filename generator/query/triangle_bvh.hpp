@@ -42,6 +42,11 @@ public:
         return along(origin, dir, -INFINITY, INFINITY, visit);
     }
 
+    // The same for the vertical line through (x, y): what along_line offers a line straight up or
+    // down there (its box tests then ask x and y alone), in the same order, at any height.
+    template <typename Visit>
+    bool along_vertical(double x, double y, Visit&& visit) const;
+
     // Calls visit(face) for every face whose box lies within squared distance bound() of p, nearer
     // boxes first; bound() is asked again as the search goes, so the caller narrows it.
     template <typename Visit, typename Bound>
@@ -129,6 +134,29 @@ void TriangleBvh::near_point(const Vec3& p, Visit&& visit, Bound&& bound) const 
 template <typename Visit>
 bool TriangleBvh::along_segment(const Vec3& a, const Vec3& b, Visit&& visit) const {
     return along(a, b - a, 0, 1, visit);
+}
+
+template <typename Visit>
+bool TriangleBvh::along_vertical(double x, double y, Visit&& visit) const {
+    if (nodes_.empty()) return false;
+    // clip's tests for a direction (0, 0, +-1): x and y inside the box (the z slab always passes).
+    auto holds = [x, y](const Box& b) { return !(x < b.lo[0] || x > b.hi[0] || y < b.lo[1] || y > b.hi[1]); };
+    std::uint32_t stack[128];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const std::uint32_t at = stack[--top];
+        const Node& n = nodes_[at];
+        if (!holds(n.box)) continue;
+        if (n.count == 0) {
+            stack[top++] = n.first;
+            stack[top++] = at + 1;
+            continue;
+        }
+        for (std::uint32_t s = n.first; s < n.first + n.count; ++s)
+            if (holds(boxes_[s]) && visit(faces_[s])) return true;
+    }
+    return false;
 }
 
 template <typename Visit>
