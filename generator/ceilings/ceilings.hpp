@@ -37,8 +37,10 @@
 //               where they cost less than the region's own tree on the Cura route AND on the
 //               PrusaSlicer route (which slicer the user has is not known; on the Cura route
 //               the walls are priced as the slabs the pipeline makes of them, ceilings/slabs.hpp);
-//               the tree is grown from the region's samples alone and counted by the caller's
-//               `tree_count`
+//               the tree is grown from the region's samples and those beside it (neighbours on
+//               the same stretch of surface the walls cannot take: walls split the tree that
+//               would merge them) and counted by the caller's `tree_count`; a slab's bridge only
+//               between rows whose feet are level (ceilings/slabs.cpp)
 //     coverage  a sample is handed to the walls when every point `check` judges (overhang faces,
 //               ridges, lowest points: check/judge_overhangs.hpp) that the sample covers (as the
 //               sampling counts it: coverage_reach, same stretch of surface) lies within
