@@ -70,6 +70,11 @@ private:
     // Parameter interval [t0, t1] of origin + t * dir inside the box, clipped to [lo, hi]; false if empty.
     template <typename Visit>
     bool along(const Vec3& o, const Vec3& d, double from, double to, Visit& visit) const;
+    // Depth first (a node's first child, the node after it, before its second) through the nodes
+    // whose boxes `holds` lets through, visiting the faces whose own boxes it lets through: along
+    // and along_vertical, whose callers' answers depend on that order.
+    template <typename Holds, typename Visit>
+    bool walk(Holds&& holds, Visit& visit) const;
     static double squared_gap(const Box& b, const Vec3& p);
     static bool clip(const Box& b, const Vec3& o, const Vec3& d, const Vec3& inv, double& lo, double& hi);
 };
@@ -138,9 +143,24 @@ bool TriangleBvh::along_segment(const Vec3& a, const Vec3& b, Visit&& visit) con
 
 template <typename Visit>
 bool TriangleBvh::along_vertical(double x, double y, Visit&& visit) const {
-    if (nodes_.empty()) return false;
     // clip's tests for a direction (0, 0, +-1): x and y inside the box (the z slab always passes).
-    auto holds = [x, y](const Box& b) { return !(x < b.lo[0] || x > b.hi[0] || y < b.lo[1] || y > b.hi[1]); };
+    return walk([x, y](const Box& b) { return !(x < b.lo[0] || x > b.hi[0] || y < b.lo[1] || y > b.hi[1]); }, visit);
+}
+
+template <typename Visit>
+bool TriangleBvh::along(const Vec3& o, const Vec3& d, double from, double to, Visit& visit) const {
+    const Vec3 inv{1 / d.x, 1 / d.y, 1 / d.z};
+    return walk(
+        [&](const Box& b) {
+            double lo = from, hi = to;
+            return clip(b, o, d, inv, lo, hi);
+        },
+        visit);
+}
+
+template <typename Holds, typename Visit>
+bool TriangleBvh::walk(Holds&& holds, Visit& visit) const {
+    if (nodes_.empty()) return false;
     std::uint32_t stack[128];
     int top = 0;
     stack[top++] = 0;
@@ -155,31 +175,6 @@ bool TriangleBvh::along_vertical(double x, double y, Visit&& visit) const {
         }
         for (std::uint32_t s = n.first; s < n.first + n.count; ++s)
             if (holds(boxes_[s]) && visit(faces_[s])) return true;
-    }
-    return false;
-}
-
-template <typename Visit>
-bool TriangleBvh::along(const Vec3& o, const Vec3& d, double from, double to, Visit& visit) const {
-    if (nodes_.empty()) return false;
-    const Vec3 inv{1 / d.x, 1 / d.y, 1 / d.z};
-    std::uint32_t stack[128];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0) {
-        const std::uint32_t at = stack[--top];
-        const Node& n = nodes_[at];
-        double lo = from, hi = to;
-        if (!clip(n.box, o, d, inv, lo, hi)) continue;
-        if (n.count == 0) {
-            stack[top++] = n.first;
-            stack[top++] = at + 1;
-            continue;
-        }
-        for (std::uint32_t s = n.first; s < n.first + n.count; ++s) {
-            double l = from, h = to;
-            if (clip(boxes_[s], o, d, inv, l, h) && visit(faces_[s])) return true;
-        }
     }
     return false;
 }
