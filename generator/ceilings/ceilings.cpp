@@ -247,6 +247,12 @@ struct Region {
 // Lattice neighbours this many sampling distances apart (or less) join a region.
 constexpr double kRegionJoin = 1.5;
 
+// Do samples at a and b join one region: lattice neighbours (kRegionJoin sampling distances `sd`
+// apart or less) on the same stretch of surface (heights within `rise`, same_surface_rise)?
+bool join_region(const Vec3& a, const Vec3& b, double sd, double rise) {
+    return horizontal_distance(a, b) <= kRegionJoin * sd && std::abs(a.z - b.z) <= rise;
+}
+
 // Each region's `beside`: the samples that would join it (lattice neighbours on the same stretch of
 // surface) but that its structure cannot take, so the tree takes them: a bore's sloping sides beside
 // the ridge along its crown, where walls could stand only under the ridge (on the nearly level
@@ -259,14 +265,12 @@ void samples_beside(const std::vector<Sample>& samples, const std::vector<char>&
     for (std::size_t i = 0; i < samples.size(); ++i)
         if (!free[i]) others.insert(samples[i].p, i);
     for (Region& r : regions) {
-        std::vector<char> taken(samples.size(), 0);
         for (std::size_t k : r.samples)
             others.visit_near(samples[k].p, 2, [&](std::size_t j) {
-                const Vec3 &a = samples[k].p, &b = samples[j].p;
-                if (!taken[j] && horizontal_distance(a, b) <= kRegionJoin * sd && std::abs(a.z - b.z) <= rise)
-                    taken[j] = 1, r.beside.push_back(j);
+                if (join_region(samples[k].p, samples[j].p, sd, rise)) r.beside.push_back(j);
             });
         std::sort(r.beside.begin(), r.beside.end());
+        r.beside.erase(std::unique(r.beside.begin(), r.beside.end()), r.beside.end());
     }
 }
 
@@ -301,7 +305,7 @@ std::vector<Region> free_regions(const ModelQuery& q, const std::vector<Sample>&
             r.box.max = {std::max(r.box.max.x, a.x), std::max(r.box.max.y, a.y), std::max(r.box.max.z, a.z)};
             grid.visit_near(a, 2, [&](std::size_t j) {
                 const Vec3& b = samples[j].p;
-                if (!seen[j] && horizontal_distance(a, b) <= kRegionJoin * sd && std::abs(a.z - b.z) <= rise) seen[j] = 1, stack.push_back(j);
+                if (!seen[j] && join_region(a, b, sd, rise)) seen[j] = 1, stack.push_back(j);
             });
         }
         std::sort(r.samples.begin(), r.samples.end());
