@@ -1022,10 +1022,11 @@ public:
     // Calls visit(point) for the points within `radius` of c (horizontally) until it returns true.
     template <typename Visit>
     bool visit_near(const Vec3& c, double radius, Visit visit) {
+        const Reach near(radius);
         for (long i = points_.index(c.x - radius); i <= points_.index(c.x + radius); ++i)
             for (long j = points_.index(c.y - radius); j <= points_.index(c.y + radius); ++j)
                 for (const Vec3& x : cell(i, j))
-                    if (within_reach(x, c, radius) && visit(x)) return true;
+                    if (near(x, c) && visit(x)) return true;
         return false;
     }
 

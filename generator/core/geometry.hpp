@@ -36,15 +36,21 @@ inline Vec3 normalized(const Vec3& a) {
 }
 inline double distance(const Vec3& a, const Vec3& b) { return norm(a - b); }
 inline double horizontal_distance(const Vec3& a, const Vec3& b) { return std::hypot(a.x - b.x, a.y - b.y); }
-// horizontal_distance(a, b) <= reach, decided from the squares where they are clear (a relative
-// 1e-9 either side, far beyond their rounding) and by the same hypot otherwise: the same answer,
-// without a hypot for most points asked about.
-inline bool within_reach(const Vec3& a, const Vec3& b, double reach) {
-    if (!(reach >= 0)) return false;  // as hypot's answer: never <= a negative (or NaN) reach
-    const double dx = a.x - b.x, dy = a.y - b.y, d2 = dx * dx + dy * dy, r2 = reach * reach;
-    if (!(d2 <= r2 * (1 + 1e-9))) return false;  // also NaN, which hypot would not call near
-    return d2 < r2 * (1 - 1e-9) || horizontal_distance(a, b) <= reach;
-}
+// Reach(reach)(a, b): horizontal_distance(a, b) <= reach, decided from the squares where they are
+// clear (a relative 1e-9 either side, far beyond their rounding) and by the same hypot otherwise:
+// the same answer, without a hypot for most points asked about. The squares' bounds are taken once
+// for the many pairs asked at one reach (a Cover's); within_reach asks one pair.
+struct Reach {
+    explicit Reach(double r) : reach(r), most2(r * r * (1 + 1e-9)), least2(r * r * (1 - 1e-9)) {}
+    bool operator()(const Vec3& a, const Vec3& b) const {
+        if (!(reach >= 0)) return false;  // as hypot's answer: never <= a negative (or NaN) reach
+        const double dx = a.x - b.x, dy = a.y - b.y, d2 = dx * dx + dy * dy;
+        if (!(d2 <= most2)) return false;  // also NaN, which hypot would not call near
+        return d2 < least2 || horizontal_distance(a, b) <= reach;
+    }
+    double reach, most2, least2;
+};
+inline bool within_reach(const Vec3& a, const Vec3& b, double reach) { return Reach(reach)(a, b); }
 // Distance from p to the segment a-b.
 inline double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
     const Vec3 ab = b - a;

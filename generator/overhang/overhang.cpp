@@ -41,9 +41,20 @@ public:
     void add(const Vec3& p) { grid_.insert(p, p); }
     // `above`: how much higher than x a coverer may lie at most (beyond the surface rule).
     // covers(q, x, reach, angle), its rise taken once.
-    bool covered(const Vec3& x, double above = INFINITY) const {
+    // `hint`: a coverer to ask first (the one that covered a point asked before), updated to the one
+    // found. Points are asked in runs of neighbours, and one coverer serves most of a run. Asked
+    // only where the search would visit it (in x's cell or the eight around it; coverers are never
+    // taken out), so the answer is the search's: some coverer there covers x.
+    bool covered(const Vec3& x, double above = INFINITY, std::optional<Vec3>* hint = nullptr) const {
+        auto covers_x = [&](const Vec3& q) { return q.z <= x.z + above && cover_(q, x); };
+        auto visited = [&](const Vec3& q) {
+            return std::abs(grid_.index(q.x) - grid_.index(x.x)) <= 1 && std::abs(grid_.index(q.y) - grid_.index(x.y)) <= 1;
+        };
+        if (hint && *hint && covers_x(**hint) && visited(**hint)) return true;
         return grid_.visit_near(x, 1, [&](const Vec3& q) {
-            return q.z <= x.z + above && cover_(q, x);
+            if (!covers_x(q)) return false;
+            if (hint) *hint = q;
+            return true;
         });
     }
 
@@ -263,7 +274,8 @@ OverhangOptions overhang_options(const Params& p) {
 
 double coverage_reach(double sampling_distance) { return std::sqrt(0.5) * sampling_distance; }
 
-Cover::Cover(double reach, double critical_angle_deg) : reach(reach), rise(surface_rise(reach, critical_angle_deg)) {}
+Cover::Cover(double reach, double critical_angle_deg)
+    : reach(reach), rise(surface_rise(reach, critical_angle_deg)), near(reach) {}
 
 bool covers(const Vec3& sample, const Vec3& x, double reach, double critical_angle_deg) {
     // The rise (a tangent) only for points within reach: most points asked about are not.
@@ -367,11 +379,12 @@ void fill_demand(const Demand& d, const OverhangOptions& o, Needs needs, Rests r
         if (needs(x, 0.5 * o.bed_height)) add(x, SampleKind::Point);
     // Rims and ridges: at the first uncovered point, a sample as far along the edge as still
     // covers it, so each rim sample serves the most edge it can.
+    const Cover still_covers{kEdgeAdvance * lean_reach(o), o.critical_angle};
     for (const auto& pts : d.along)
         for (size_t i = 0; i < pts.size(); ++i) {
             if (!needs(pts[i], INFINITY)) continue;
             size_t j = i;
-            while (advance && j + 1 < pts.size() && covers(pts[j + 1], pts[i], kEdgeAdvance * lean_reach(o), o.critical_angle)) ++j;
+            while (advance && j + 1 < pts.size() && still_covers(pts[j + 1], pts[i])) ++j;
             while (j > i && (pts[j].z < o.bed_height || rests(pts[j]))) --j;
             add(pts[j], SampleKind::Edge);
         }
@@ -383,10 +396,12 @@ void fill_demand(const Demand& d, const OverhangOptions& o, Needs needs, Rests r
 // Is the lattice point `p` one the print bridges: is every demand point it would cover (within the
 // full reach, on its surface) already carried by the inside corners in `anchors`? Then its
 // sample would hold up nothing the walls do not: a horizontal hole or a narrow slot.
-bool bridged(const Vec3& p, const XyGrid<Vec3>& demand, const CoverGrid& anchors, double reach, double angle) {
-    if (!anchors.covered(p)) return false;
-    const long rings = static_cast<long>(std::ceil(reach / demand.cell()));
-    return !demand.visit_near(p, rings, [&](const Vec3& x) { return covers(p, x, reach, angle) && !anchors.covered(x); });
+// `full`: Cover(the full reach, the critical angle).
+bool bridged(const Vec3& p, const XyGrid<Vec3>& demand, const CoverGrid& anchors, const Cover& full) {
+    std::optional<Vec3> hint;
+    if (!anchors.covered(p, INFINITY, &hint)) return false;
+    const long rings = static_cast<long>(std::ceil(full.reach / demand.cell()));
+    return !demand.visit_near(p, rings, [&](const Vec3& x) { return full(p, x) && !anchors.covered(x, INFINITY, &hint); });
 }
 
 // The demand points of the faces, rims and minima in an XY grid (for `bridged`).
@@ -434,7 +449,8 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
         CoverGrid walls{lean_reach(judged), o.critical_angle};
         for (const auto& a : res.anchors) walls.add(a);
         const XyGrid<Vec3> near = demand_grid(demand, bridge_reach);
-        std::erase_if(lattice_points, [&](const Vec3& p) { return bridged(p, near, walls, bridge_reach, o.critical_angle); });
+        const Cover full{bridge_reach, o.critical_angle};
+        std::erase_if(lattice_points, [&](const Vec3& p) { return bridged(p, near, walls, full); });
     }
     for (const auto& p : lattice_points)
         if (p.z >= o.bed_height) res.samples.push_back({p, SampleKind::Face}), lattice.add(p);
@@ -443,8 +459,9 @@ OverhangSamples sample_overhangs(const Mesh& m, const OverhangOptions& o, const 
     // A point needs a sample near it unless it lies in the first layer, is covered, or rests on
     // material below (it needs none itself; off the lattice it covers nothing, since `check` may
     // judge no resting point near it).
+    std::optional<Vec3> lattice_hint, grid_hint;
     auto needs = [&](const Vec3& x, double above) {
-        bool covered = lattice.covered(x, above) || grid.covered(x, above);
+        bool covered = lattice.covered(x, above, &lattice_hint) || grid.covered(x, above, &grid_hint);
         return x.z >= o.bed_height && !covered && !rests(x);
     };
     fill_demand(demand, o, needs, rests, [&](const Vec3& x, SampleKind kind) {
@@ -545,8 +562,9 @@ std::vector<Sample> top_up_samples(const Mesh& m, const OverhangOptions& o, cons
     }
     for (const auto& a : sampled.anchors) grid.add(a);
     std::vector<Sample> out;
+    std::optional<Vec3> hint;
     auto needs = [&](const Vec3& x, double above) {
-        return x.z >= o.bed_height && !cells.full_cell_around(x, above) && !grid.covered(x, above) && !rests(x);
+        return x.z >= o.bed_height && !cells.full_cell_around(x, above) && !grid.covered(x, above, &hint) && !rests(x);
     };
     const Demand demand = coverage_demand(m, cls, sampled.edges, o, kStrictEdgeStepOfReach);
     PlacesWhereNoneFits where{demand, o, rests, support_at};

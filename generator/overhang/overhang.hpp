@@ -85,10 +85,9 @@ bool covers(const Vec3& sample, const Vec3& x, double reach, double critical_ang
 // covers(s, x, r, a).
 struct Cover {
     Cover(double reach, double critical_angle_deg);
-    bool operator()(const Vec3& sample, const Vec3& x) const {
-        return within_reach(sample, x, reach) && std::abs(sample.z - x.z) <= rise;
-    }
+    bool operator()(const Vec3& sample, const Vec3& x) const { return near(sample, x) && std::abs(sample.z - x.z) <= rise; }
     double reach, rise;
+    Reach near;  // within_reach at `reach`
 };
 
 // The air straight below an overhang point: down to the first face a ray meets from just under
