@@ -49,7 +49,9 @@ public:
         file(at_);
     }
 
-    double length() {
+    // The walk's length; `hop(a, b)` is told each hop, in the walk's order.
+    template <typename Hop>
+    double length(Hop&& hop) {
         double len = 0;
         std::size_t cur = 0;
         take(cur);
@@ -58,6 +60,7 @@ public:
             const std::size_t e = at_[i + 1], pb = pos_[b];  // the plain walk's swap of places i + 1 and pb
             at_[pb] = e, pos_[e] = pb, at_[i + 1] = b, pos_[b] = i + 1;
             len += horizontal_distance(pts_[cur], pts_[b]);
+            hop(pts_[cur], pts_[b]);
             take(b);
             cur = b;
         }
@@ -125,10 +128,11 @@ private:
 
 double nearest_next_path(const std::vector<Vec3>& pts) {
     if (pts.size() < 2) return 0;
-    return NearestNextWalk(pts).length();
+    return NearestNextWalk(pts).length([](const Vec3&, const Vec3&) {});
 }
 
-SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>& strut_width, const Params& p) {
+SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>& strut_width, const Params& p,
+                                const HopCrosses& crosses) {
     SlicerCost c;
     auto ups = uprights(t, strut_width, p);
     double top = 0;
@@ -155,8 +159,12 @@ SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>&
             c.outline_mm += outline_per_layer(u.width);
         }
         c.island_layers += islands.size();
+        c.support_layers += !islands.empty();
         c.most_islands = std::max(c.most_islands, islands.size());
-        c.travel_mm += nearest_next_path(islands);
+        if (islands.size() < 2) continue;
+        c.travel_mm += NearestNextWalk(islands).length([&](const Vec3& a, const Vec3& b) {
+            if (crosses && crosses(a, b)) ++c.crossing_hops;
+        });
     }
     c.cura_seconds = tree_route_seconds(kCuraRoute, c.island_layers, c.outline_mm, c.travel_mm);
     c.prusa_seconds = tree_route_seconds(kPrusaRoute, c.island_layers, c.outline_mm, c.travel_mm);
