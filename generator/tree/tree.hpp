@@ -92,7 +92,8 @@ struct SlicerCost {
     double island_layers = 0;  // islands, summed over the layers
     double outline_mm = 0;     // outline drawn, summed over the layers
     double travel_mm = 0;      // travel between the islands of each layer, nearest island next
-    double crossing_hops = 0;  // hops of that travel whose straight line crosses the model (not priced)
+    double crossing_hops = 0;  // hops of that travel whose straight line crosses the model (not priced;
+                               // counted where the model is asked, tree/slicer_cost.hpp)
     double support_layers = 0; // layers holding at least one island (not priced)
     double cura_seconds = 0;   // the first three priced for CuraEngine from our support mesh (kCuraRoute)
     double prusa_seconds = 0;  // and for PrusaSlicer from our .prusa.3mf (kPrusaRoute)
