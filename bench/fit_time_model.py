@@ -6,19 +6,15 @@ usage: bench/fit_time_model.py TUNING.json [CHECK.json ...]
        bench/fit_time_model.py --rest TUNING.json [CHECK.json ...]
 
 TUNING.json is a hand-off run of the tuning set (bench/handoff.py --tuning): for every model it holds
-what the generator counted for its tree (report: slicer_estimate island_layers, outline_mm, travel_mm,
-crossing_hops, support_layers) and the seconds the supports added in each slicer's G-code (route
-minus the bare model). Per route (cura_ours_mesh, prusa_ours_3mf) it fits
+what the generator counted for its tree (report: slicer_estimate island_layers, outline_mm, travel_mm)
+and the seconds the supports added in each slicer's G-code (route minus the bare model). Per route
+(cura_ours_mesh, prusa_ours_3mf) it fits
 
     added seconds = island_s * island_layers + outline_s_per_mm * outline_mm + hop_s_per_mm * travel_mm
-                    [+ layer_s * support_layers + crossing_s * crossing_hops]
 
-by least squares on the relative error (every model weighs the same), no price below zero (a term
-whose price would be is left out and the rest fitted again), prints the prices and, for TUNING.json
-and each CHECK.json (e.g. the validation run, never fitted on), the estimate over the G-code per
-model with its median and worst. The bracketed terms are Cura's alone (ROUTE_TERMS says why), and
-crossing_s is not fitted: it is what one retraction costs in the route's G-code (its retraction
-seconds over its retractions, median over the models).
+by least squares on the relative error (every model weighs the same), prints the three prices and,
+for TUNING.json and each CHECK.json (e.g. the validation run, never fitted on), the estimate over the
+G-code per model with its median and worst.
 
 With --rest the tree's prices are fitted to the G-code's seconds less those it spends on our walls
 (the route's "walls" of handoff.py, slicers/wall_time.py): without it, on a walled model the tree's
@@ -40,39 +36,19 @@ import sys
 
 ROUTES = ("cura_ours_mesh", "prusa_ours_3mf")
 TERMS = ("island_layers", "outline_mm", "travel_mm")
-# CuraEngine travels straight between support islands without retracting unless the line crosses the
-# model (limit_support_retractions): its crossings are retractions, and its layers' travels to and
-# from the model retract too. PrusaSlicer retracts before nearly every hop, crossing or not: its
-# island price holds that, and fitted with the layers its estimate's spread on the validation set
-# widened (log-sd 0.11 -> 0.14, 3326c9b).
-ROUTE_TERMS = {"cura_ours_mesh": TERMS + ("support_layers",), "prusa_ours_3mf": TERMS}
-CROSSING_RETRACTS = {"cura_ours_mesh": True, "prusa_ours_3mf": False}
 
 
-def rows(path, route, rest=False, terms=TERMS, fixed=None):
+def rows(path, route, rest=False):
     """(name, the tree's terms, G-code seconds) per model; with rest, the seconds the G-code spends on
-    the walls (slicers/wall_time.py, the route's "walls") are taken out: the tree's own seconds. The
-    `fixed` prices' part of the estimate ({term: price}) is taken out too."""
+    the walls (slicers/wall_time.py, the route's "walls") are taken out: the tree's own seconds."""
     out = []
     for name, m in json.load(open(path))["models"].items():
         est = m.get("gen", {}).get("tree", {}).get("slicer_estimate")
         d = m.get("derived", {}).get(route)
-        if est and d and d.get("support_min") and est.get("island_layers"):
+        if est and d and d.get("support_min"):
             walls = (m.get("slices", {}).get(route) or {}).get("walls") if rest else None
-            seconds = d["support_min"] * 60 - (walls["wall_s"] if walls else 0)
-            seconds -= sum(price * est.get(t, 0) for t, price in (fixed or {}).items())
-            out.append((name, [est.get(t, 0) for t in terms], seconds, d["support_min"] * 60 - (walls["wall_s"] if walls else 0)))
+            out.append((name, [est[t] for t in TERMS], d["support_min"] * 60 - (walls["wall_s"] if walls else 0)))
     return out
-
-
-def retraction_price(path, route):
-    """Seconds one retraction costs in the route's G-code (slicers/gcode_time.py): median over the models."""
-    per = []
-    for m in json.load(open(path))["models"].values():
-        d = m.get("derived", {}).get(route) or {}
-        if d.get("retractions") and d.get("time_split_s"):
-            per.append(d["time_split_s"]["retraction_s"] / d["retractions"])
-    return statistics.median(per) if per else 0.0
 
 
 def solve(a, b):
@@ -89,24 +65,16 @@ def solve(a, b):
     return [m[i][n] / m[i][i] for i in range(n)]
 
 
-def fit(data, k=len(TERMS)):
-    """Prices of the k terms, none below zero: a term whose price would be is dropped, the rest fitted again."""
-    active = list(range(k))
-    while True:
-        w = [1 / total for _, _, _, total in data]
-        a = [[sum(wr * wr * x[i] * x[j] for wr, (_, x, _, _) in zip(w, data)) for j in active] for i in active]
-        b = [sum(wr * wr * x[i] * t for wr, (_, x, t, _) in zip(w, data)) for i in active]
-        got = solve(a, b) if active else []
-        if all(p >= 0 for p in got):
-            prices = [0.0] * k
-            for i, p in zip(active, got):
-                prices[i] = p
-            return prices
-        active.pop(min(range(len(got)), key=lambda i: got[i]))
+def fit(data):
+    k = len(TERMS)
+    w = [1 / t for _, _, t in data]
+    a = [[sum(wr * wr * x[i] * x[j] for wr, (_, x, _) in zip(w, data)) for j in range(k)] for i in range(k)]
+    b = [sum(wr * wr * x[i] * t for wr, (_, x, t) in zip(w, data)) for i in range(k)]
+    return solve(a, b)
 
 
 def report(label, data, prices):
-    ratios = [(name, (sum(p * v for p, v in zip(prices, x)) + (total - t)) / total) for name, x, t, total in data]
+    ratios = [(name, sum(p * v for p, v in zip(prices, x)) / t) for name, x, t in data]
     if not ratios:
         return
     rs = [r for _, r in ratios]
@@ -153,18 +121,16 @@ def main(paths):
     if rest:
         paths = paths[1:]
     for route in ROUTES:
-        terms = ROUTE_TERMS[route]
-        fixed = {"crossing_hops": retraction_price(paths[0], route)} if CROSSING_RETRACTS[route] else {}
-        data = rows(paths[0], route, rest, terms, fixed)
-        if len(data) < len(terms):
+        data = rows(paths[0], route, rest)
+        if len(data) < len(TERMS):
             print(f"{route}: {len(data)} models, too few to fit")
             continue
-        prices = fit(data, len(terms))
-        named = dict(zip(terms, prices), **fixed)
-        print(f"{route}: {len(data)} models; " + ", ".join(f"{t} {p:.4f}" for t, p in named.items()))
+        prices = fit(data)
+        print(f"{route}: {len(data)} models; island_s {prices[0]:.4f}, outline_s_per_mm {prices[1]:.4f}, "
+              f"hop_s_per_mm {prices[2]:.4f}")
         report(paths[0], data, prices)
         for path in paths[1:]:
-            report(path, rows(path, route, rest, terms, fixed), prices)
+            report(path, rows(path, route, rest), prices)
 
 
 if __name__ == "__main__":

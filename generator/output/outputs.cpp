@@ -72,8 +72,6 @@ json supports_json(const Supports& s, const Params& p) {
                                  {"most_islands", cost.most_islands},
                                  {"outline_mm", cost.outline_mm},
                                  {"travel_mm", cost.travel_mm},
-                                 {"crossing_hops", cost.crossing_hops},
-                                 {"support_layers", cost.support_layers},
                                  {"seconds", cost.seconds},
                                  {"routes", {{"cura_support_mesh", {{"seconds", cost.cura_seconds}}},
                                              {"prusa_3mf", {{"seconds", cost.prusa_seconds}}}}},

@@ -129,11 +129,7 @@ Supports build_supports(const Mesh& placed, const std::vector<Sample>& samples, 
 
 Supports build_supports(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
                         const std::vector<int>& omit) {
-    return finish_supports(q, grow_cheaper_tree(q, samples, p), p, omit);
-}
-
-HopCrosses hops_across(const ModelQuery& q) {
-    return [&q](const Vec3& a, const Vec3& b) { return q.segment_hits(a, b); };
+    return finish_supports(grow_cheaper_tree(q, samples, p), p, omit);
 }
 
 SizedTree grow_cheaper_tree(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p) {
@@ -249,25 +245,19 @@ TreeCounter tree_counter(const ModelQuery& q, const Params& p, const std::vector
     return [count = feet_tree_counter(q, p, support_blockers)](const std::vector<Sample>& samples) { return count(samples, {}); };
 }
 
-Supports finish_supports(const ModelQuery& q, SupportTree grown, const Params& p, const std::vector<int>& omit,
-                         std::vector<CeilingWall> walls) {
-    return finish_supports(q, size_struts(std::move(grown), p), p, omit, std::move(walls));
+Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit, std::vector<CeilingWall> walls) {
+    return finish_supports(size_struts(std::move(grown), p), p, omit, std::move(walls));
 }
 
-Supports finish_supports(const ModelQuery& q, SizedTree grown, const Params& p, const std::vector<int>& omit,
-                         std::vector<CeilingWall> walls) {
+Supports finish_supports(SizedTree grown, const Params& p, const std::vector<int>& omit, std::vector<CeilingWall> walls) {
     Supports s;
     s.grown_struts = grown.tree.struts;
     s.grown_pillars = grown.tree.pillars;
     for (const Node& n : grown.tree.nodes) s.grown_kinds.push_back(n.kind);
     if (omit.empty()) s.sized = std::move(grown);  // sized as grown: nothing pruned
     else s.sized = size_struts(prune_struts(std::move(grown.tree), omit), p);
-    // Counted once more, with the model, for the hops that cross it (SlicerCost::crossing_hops: no
-    // price depends on them yet, so the choosers, which may take this tree's estimate, skip them).
-    // Not for the columns baseline: its many more islands cost igea 7 % of its CPU in questions.
     const std::optional<SlicerCost>& priced = s.sized.tree.slicer_cost;  // reset by prune_struts
-    if (p.strategy == Strategy::tree) s.slicer_cost = estimate_slicer_cost(s.sized.tree, mean_strut_widths(s.sized), p, hops_across(q));
-    else s.slicer_cost = priced ? *priced : estimate_slicer_cost(s.sized.tree, mean_strut_widths(s.sized), p);
+    s.slicer_cost = priced ? *priced : estimate_slicer_cost(s.sized.tree, mean_strut_widths(s.sized), p);
     s.bodies = build_bodies(s.sized, p);
     s.mesh = bodies_mesh(s.bodies, p.wall_thickness);
     s.volume = solid_volume(s.bodies, p.wall_thickness);
@@ -799,11 +789,11 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
     // Neighbouring rows as slabs: the same lines under the ceiling, each drawn once by CuraEngine.
     r.supports = sw.time("struts", progress, [&] {
         ceilings.walls = join_rows_into_slabs(*query, std::move(ceilings.walls), p);
-        return finish_supports(*query, std::move(grown), p, job.edits.omit_struts, std::move(ceilings.walls));
+        return finish_supports(std::move(grown), p, job.edits.omit_struts, std::move(ceilings.walls));
     });
     Params columns = p;
     columns.strategy = Strategy::columns;
-    r.columns = sw.time("columns baseline", progress, [&] { return finish_supports(*query, grow_tree(*query, hung, columns, {}, blockers), columns); });
+    r.columns = sw.time("columns baseline", progress, [&] { return finish_supports(grow_tree(*query, hung, columns, {}, blockers), columns); });
     for (auto& w : untipped_support_points(*query, r.supports.sized.tree, job.edits, p)) r.warnings.push_back(std::move(w));
     query.reset();
     for (auto& w : floating_shells(r.model, 0.5 * p.layer_height, input)) r.warnings.push_back(std::move(w));

@@ -14,7 +14,6 @@
 #include "core/params.hpp"
 #include "job/job.hpp"
 #include "job/result.hpp"
-#include "tree/slicer_cost.hpp"
 
 namespace cs {
 
@@ -42,7 +41,7 @@ Supports build_supports(const ModelQuery& placed, const std::vector<Sample>& sam
 // tree on 9 of 9 models between the first two ways. The columns baseline is grown once (no merges).
 // Returned sized (size_struts, struts/struts.hpp), as it was sized to be priced: each tree is sized
 // once. Its tree carries the estimate (SupportTree::slicer_cost) for the strategy tree.
-// Example: Supports s = finish_supports(q, grow_cheaper_tree(q, samples, p), p);
+// Example: Supports s = finish_supports(grow_cheaper_tree(q, samples, p), p);
 SizedTree grow_cheaper_tree(const ModelQuery& placed, const std::vector<Sample>& samples, const Params& p);
 // The same from the leaves hang_leaves (tree.hpp) hung for the samples, none entering the user's
 // support blockers (placed-model coordinates).
@@ -57,18 +56,13 @@ TreeCounter tree_counter(const ModelQuery& placed, const Params& p, const std::v
 // for bit, it gives the same count without growing the tree again.
 FeetTreeCounter feet_tree_counter(const ModelQuery& placed, const Params& p,
                                   const std::vector<Box3>& support_blockers = {});
-// Supports from a grown tree (and the ceiling walls beside it) under the placed model: struts in
-// `omit` (indices into `grown`) are pruned with their branches first. A tree already sized
-// (grow_cheaper_tree) is sized again only when struts are pruned; its estimate is counted again
-// with the hops that cross the placed model.
-Supports finish_supports(const ModelQuery& placed, SupportTree grown, const Params& p, const std::vector<int>& omit = {},
+// Supports from a grown tree (and the ceiling walls beside it): struts in `omit` (indices into
+// `grown`) are pruned with their branches first. A tree already sized (grow_cheaper_tree) is sized
+// again only when struts are pruned; its estimate is kept unless struts are pruned.
+Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit = {},
                          std::vector<CeilingWall> walls = {});
-Supports finish_supports(const ModelQuery& placed, SizedTree grown, const Params& p, const std::vector<int>& omit = {},
+Supports finish_supports(SizedTree grown, const Params& p, const std::vector<int>& omit = {},
                          std::vector<CeilingWall> walls = {});
-
-// The placed model's test for the hops between islands (estimate_slicer_cost, tree/slicer_cost.hpp):
-// does the straight line between two islands touch it?
-HopCrosses hops_across(const ModelQuery& placed);
 
 // The tree without the struts in `omit` and everything that hangs from them (the struts above, up
 // to the leaves), and without the pillars in `omit` (pillar i is index struts + i). Nodes keep

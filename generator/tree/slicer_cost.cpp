@@ -49,9 +49,7 @@ public:
         file(at_);
     }
 
-    // The walk's length; `hop(a, b)` is told each hop, in the walk's order.
-    template <typename Hop>
-    double length(Hop&& hop) {
+    double length() {
         double len = 0;
         std::size_t cur = 0;
         take(cur);
@@ -60,7 +58,6 @@ public:
             const std::size_t e = at_[i + 1], pb = pos_[b];  // the plain walk's swap of places i + 1 and pb
             at_[pb] = e, pos_[e] = pb, at_[i + 1] = b, pos_[b] = i + 1;
             len += horizontal_distance(pts_[cur], pts_[b]);
-            hop(pts_[cur], pts_[b]);
             take(b);
             cur = b;
         }
@@ -128,11 +125,10 @@ private:
 
 double nearest_next_path(const std::vector<Vec3>& pts) {
     if (pts.size() < 2) return 0;
-    return NearestNextWalk(pts).length([](const Vec3&, const Vec3&) {});
+    return NearestNextWalk(pts).length();
 }
 
-SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>& strut_width, const Params& p,
-                                const HopCrosses& crosses) {
+SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>& strut_width, const Params& p) {
     SlicerCost c;
     auto ups = uprights(t, strut_width, p);
     double top = 0;
@@ -159,12 +155,8 @@ SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>&
             c.outline_mm += outline_per_layer(u.width);
         }
         c.island_layers += islands.size();
-        c.support_layers += !islands.empty();
         c.most_islands = std::max(c.most_islands, islands.size());
-        if (islands.size() < 2) continue;
-        c.travel_mm += NearestNextWalk(islands).length([&](const Vec3& a, const Vec3& b) {
-            if (crosses && crosses(a, b)) ++c.crossing_hops;
-        });
+        c.travel_mm += nearest_next_path(islands);
     }
     c.cura_seconds = tree_route_seconds(kCuraRoute, c.island_layers, c.outline_mm, c.travel_mm);
     c.prusa_seconds = tree_route_seconds(kPrusaRoute, c.island_layers, c.outline_mm, c.travel_mm);

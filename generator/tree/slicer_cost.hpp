@@ -5,16 +5,6 @@
 // price list, fitted to the slicers' G-code. `seconds`, the one number the summary gives, is the
 // mean of the two (we do not know which slicer a user prints with).
 //
-// Also counted, not priced: the layers holding the tree, and the hops between islands whose
-// straight line crosses the model (asked of `crosses`), for which CuraEngine retracts (its
-// limit_support_retractions travels straight between support islands otherwise). On the tuning
-// set the hops counted crossing are 0.9-1.2x the G-code's support-to-support retractions on 7
-// models (0.67x nefertiti, 0.79x igea). Priced (bench/fit_time_model.py: a retraction each, 0.54 s,
-// and 0.94 s a layer) they bring Cura's estimate of the tree within 0.85-1.72x of the G-code on
-// the validation set and the examples, from 0.32-1.80x; but the walls' choice, freed of Cura's
-// old price, then took walls PrusaSlicer printed slower (docs/unlanded/README.md), so the prices
-// stay as fitted before.
-//
 // The chooser (grow_cheaper_tree) ranks the ways of growing a tree by the PrusaSlicer price alone.
 // Where a price list changes the pick, the two ways' estimates differ by 0.02-2.5 %, below either
 // route's error on one model, so only prices that hold their ranking may choose. PrusaSlicer's do: fitted again on the 11 tuning models
@@ -28,13 +18,11 @@
 //
 // Example:
 //   const SizedTree sized = size_struts(tree, p);
-//   SlicerCost c = estimate_slicer_cost(sized.tree, mean_strut_widths(sized), p,
-//                                       [&q](const Vec3& a, const Vec3& b) { return q.segment_hits(a, b); });
-//   // c.island_layers, c.crossing_hops, c.support_layers, c.most_islands, c.cura_seconds, c.seconds
+//   SlicerCost c = estimate_slicer_cost(sized.tree, mean_strut_widths(sized), p);
+//   // c.island_layers, c.most_islands, c.cura_seconds, c.prusa_seconds, c.seconds
 #pragma once
 
 #include <cstddef>
-#include <functional>
 #include <vector>
 
 #include "core/geometry.hpp"
@@ -46,18 +34,12 @@ namespace cs {
 // SlicerCost, the result, is a plain struct of tree/tree.hpp (a SupportTree carries the one its
 // chooser computed).
 
-// Does the straight travel between two islands of a layer (their centres, at the layer's middle)
-// cross the model? Empty: nothing is in the way (a tree alone, as in tests).
-using HopCrosses = std::function<bool(const Vec3& from, const Vec3& to)>;
-
 // Input: the tree, the mean width of each strut of `t` (parallel to t.struts), the parameters
-// (layer height, tip and strut widths), the model's test for hops. Output: the counts summed over
-// the layers from the bed up, and their price per route.
+// (layer height, tip and strut widths). Output: the counts summed over the layers from the bed up,
+// and their price per route.
 // Near-linear: each piece of support is filed under the layers it spans (their count is the
-// island-layers), and each layer's islands are ordered nearest-next on a grid; one question to
-// `crosses` per hop.
-SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>& strut_width, const Params& p,
-                                const HopCrosses& crosses = {});
+// island-layers), and each layer's islands are ordered nearest-next on a grid.
+SlicerCost estimate_slicer_cost(const SupportTree& t, const std::vector<double>& strut_width, const Params& p);
 
 // Length of the path that starts at pts[0] and always goes on to the nearest point not yet
 // visited (XY distance). Ties go where the plain O(n^2) walk sends them (to the point it holds

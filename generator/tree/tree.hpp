@@ -92,10 +92,7 @@ struct SlicerCost {
     double island_layers = 0;  // islands, summed over the layers
     double outline_mm = 0;     // outline drawn, summed over the layers
     double travel_mm = 0;      // travel between the islands of each layer, nearest island next
-    double crossing_hops = 0;  // hops of that travel whose straight line crosses the model (not priced;
-                               // counted where the model is asked, tree/slicer_cost.hpp)
-    double support_layers = 0; // layers holding at least one island (not priced)
-    double cura_seconds = 0;   // the first three priced for CuraEngine from our support mesh (kCuraRoute)
+    double cura_seconds = 0;   // all three priced for CuraEngine from our support mesh (kCuraRoute)
     double prusa_seconds = 0;  // and for PrusaSlicer from our .prusa.3mf (kPrusaRoute)
     double seconds = 0;        // the mean of the two routes: a user prints with one or the other
     std::size_t most_islands = 0;  // islands in the busiest layer
@@ -110,8 +107,7 @@ struct SupportTree {
     TreeStats stats;
     GrowOptions grown_with;  // how the sweep grew it
     // The estimate of the tree as size_struts sizes it, where the one who chose the tree computed it
-    // (grow_cheaper_tree): the ceilings' weighing takes it instead of computing it again (without
-    // crossing_hops, which finish_supports counts for the tree it finishes).
+    // (grow_cheaper_tree): finish_supports takes it instead of computing it again.
     std::optional<SlicerCost> slicer_cost;
 
     double total_length() const;

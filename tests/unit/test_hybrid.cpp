@@ -106,7 +106,7 @@ TEST(Hybrid, TheTreeCarriesEveryFootAndCheckPassesIt) {
     const SupportTree leaves = hang_feet(hang_leaves(q, h.hybrid.rest, h.p), h.hybrid.feet, h.p);
     SizedTree grown = grow_cheaper_tree(q, leaves, h.p);
     ASSERT_TRUE(feet_carried(grown.tree, h.hybrid.feet));
-    const Supports s = finish_supports(q, std::move(grown), h.p, {}, h.hybrid.walls);
+    const Supports s = finish_supports(std::move(grown), h.p, {}, h.hybrid.walls);
     const CheckResult r = check_supports(h.model, s.mesh, h.p, {});
     EXPECT_TRUE(r.ok()) << r.summary();
     Mesh tree_only = bodies_mesh(s.bodies, h.p.wall_thickness);
@@ -141,7 +141,7 @@ TEST(Hybrid, WithoutALostFootOnlyItsPieceGoesAndItsSamplesGoBackToTheTree) {
     SizedTree grown = grow_cheaper_tree(q, leaves, h.p);
     ASSERT_TRUE(feet_carried(grown.tree, fewer.feet));
     EXPECT_EQ(lost_feet(grown.tree, h.hybrid.feet).size(), 1u);  // the piece gone has no leaf
-    const Supports s = finish_supports(q, std::move(grown), h.p, {}, fewer.walls);
+    const Supports s = finish_supports(std::move(grown), h.p, {}, fewer.walls);
     const CheckResult r = check_supports(h.model, s.mesh, h.p, {});
     EXPECT_TRUE(r.ok()) << r.summary();
 }

@@ -864,8 +864,6 @@ TEST(SlicerCost, CountsIslandsOutlineAndTravelPerLayer) {
     EXPECT_NEAR(c.outline_mm, 100 * 4.0, 1e-9);  // a 1 mm square
     EXPECT_NEAR(c.travel_mm, 50 * 10.0, 1e-9);
     // Priced by the one price list (core/slicer_time.hpp) for both routes; ranked by their mean.
-    EXPECT_DOUBLE_EQ(c.crossing_hops, 0);  // nothing in the way
-    EXPECT_DOUBLE_EQ(c.support_layers, 50);
     EXPECT_DOUBLE_EQ(c.cura_seconds, tree_route_seconds(kCuraRoute, 100, 400, 500));
     EXPECT_DOUBLE_EQ(c.prusa_seconds, tree_route_seconds(kPrusaRoute, 100, 400, 500));
     EXPECT_DOUBLE_EQ(c.seconds, 0.5 * (c.cura_seconds + c.prusa_seconds));
@@ -884,26 +882,6 @@ TEST(SlicerCost, CountsIslandsOutlineAndTravelPerLayer) {
     w.nodes = {{{0, 0, 1}, NodeKind::Bend}, {{0, 0, 0}, NodeKind::Bed}};
     w.struts = {{0, 1}};
     EXPECT_NEAR(estimate_slicer_cost(w, {3.0}, p).outline_mm, 5 * 4 * 3.0, 1e-9);
-}
-
-// The same two columns with a wall of the model between them, 6 mm tall: on each of its 30 layers
-// the hop from one column to the other crosses it (CuraEngine retracts for each), and on the 20
-// above it none does. Counted, not priced (tree/slicer_cost.hpp says why).
-TEST(SlicerCost, CountsTheHopsThatCrossTheModel) {
-    Params p;
-    SupportTree t;
-    t.nodes = {{{0, 0, 10}, NodeKind::Bend}, {{0, 0, 0}, NodeKind::Bed}, {{10, 0, 10}, NodeKind::Bend},
-               {{10, 0, 0}, NodeKind::Bed}};
-    t.struts = {{0, 1}, {2, 3}};
-    const Mesh wall = cs::test::box({4, -5, 0}, {6, 5, 6});
-    ModelQuery q(wall);
-    const SlicerCost open = estimate_slicer_cost(t, {1.0, 1.0}, p);
-    const SlicerCost across = estimate_slicer_cost(t, {1.0, 1.0}, p, hops_across(q));
-    EXPECT_DOUBLE_EQ(open.crossing_hops, 0);
-    EXPECT_DOUBLE_EQ(across.crossing_hops, 30);
-    EXPECT_DOUBLE_EQ(across.island_layers, open.island_layers);
-    EXPECT_DOUBLE_EQ(across.travel_mm, open.travel_mm);
-    EXPECT_DOUBLE_EQ(across.support_layers, 50);
 }
 
 // A contact tip is a taper from tip_diameter at the contact up to the width of the strut ending
