@@ -308,6 +308,8 @@ TEST(Ceilings, SamplesBesideSteepSidesThatCheckDoesNotJudgeGoToTheWalls) {
     expect_walls_hold_what_they_take(w, "tunnel");
 }
 
+namespace {
+
 // A strip of ceiling `width` mm across and 20 mm long (z 3..5) between two posts: the low
 // underside of a lid's lip or a shelf's edge.
 Mesh low_strip(double width) {
@@ -317,6 +319,8 @@ Mesh low_strip(double width) {
     g.fill({0, 0, 3}, {20, width, 5});
     return g.mesh();
 }
+
+}  // namespace
 
 // Two rows side by side stand at least two walls' thickness apart (centre to centre), or a slot
 // narrower than a wall is left between them, which a slicer fills or drops and `check` judges as a
