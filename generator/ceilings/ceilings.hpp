@@ -9,7 +9,10 @@
 //
 //   support_ceilings(model, samples, p, tree_count, blockers) -> Ceilings{walls, rest, ...}
 //     regions   samples whose fall to the bed is free, joined where lattice neighbours lie on the
-//               same stretch of surface
+//               same stretch of surface and their ceilings are level along alike directions (a
+//               pipe tee's run and branch are regions of their own, each with rows along its
+//               own axis; where the ceiling has no such direction, flat or where bores meet, a
+//               sample joins the region that reaches it first)
 //     rows      at most ceiling_span apart (no walls where that is more than twice the walls'
 //               reach and a wall: nothing between two rows would be carried), where the ceiling is level (along x or y, whichever
 //               changes height less, so a sloping or round ceiling gets long flat pieces; else
