@@ -238,9 +238,25 @@ struct Run {
     bool join = false;
 };
 
+// The moments of a ceiling's slopes (rise per mm along x and y) over some of its points: the
+// direction of least mean squared slope is where it is level (a bore's or tunnel's axis, a sloping
+// roof's contour lines), and the RMS change over a distance along any direction says how level.
+struct SlopeMoments {
+    double mxx = 0, mxy = 0, myy = 0;
+    std::size_t n = 0;
+    void add(double gx, double gy) { mxx += gx * gx, mxy += gx * gy, myy += gy * gy, ++n; }
+    // The steepest direction's angle turned a quarter: the level one.
+    double level_angle() const { return 0.5 * std::atan2(2 * mxy, mxx - myy) + 0.5 * std::numbers::pi; }
+    // RMS change in height over `length` along the unit direction e.
+    double change(const Vec3& e, double length) const {
+        return length * std::sqrt(std::max(0.0, (mxx * e.x * e.x + 2 * mxy * e.x * e.y + myy * e.y * e.y) / n));
+    }
+};
+
 struct Region {
     std::vector<std::size_t> samples;
     Box3 box;
+    SlopeMoments slopes;  // of the ceiling right above its samples (level_direction)
     std::vector<std::size_t> beside;  // neighbours the region's structure cannot take (samples_beside)
 };
 
@@ -283,27 +299,21 @@ void samples_beside(const std::vector<Sample>& samples, const std::vector<char>&
     }
 }
 
-// The moments of a ceiling's slopes (rise per mm along x and y) over some of its points: the
-// direction of least mean squared slope is where it is level (a bore's or tunnel's axis, a sloping
-// roof's contour lines), and the RMS change over a distance along any direction says how level.
-struct SlopeMoments {
-    double mxx = 0, mxy = 0, myy = 0;
-    std::size_t n = 0;
-    void add(double gx, double gy) { mxx += gx * gx, mxy += gx * gy, myy += gy * gy, ++n; }
-    // The steepest direction's angle turned a quarter: the level one.
-    double level_angle() const { return 0.5 * std::atan2(2 * mxy, mxx - myy) + 0.5 * std::numbers::pi; }
-    // RMS change in height over `length` along the unit direction e.
-    double change(const Vec3& e, double length) const {
-        return length * std::sqrt(std::max(0.0, (mxx * e.x * e.x + 2 * mxy * e.x * e.y + myy * e.y * e.y) / n));
+// The slope of the ceiling's face right above each free sample (as ceiling_near finds it, within
+// the rise of a sampling distance), rise per mm along x and y; nothing where no overhang face is
+// there, or the sample is not free. Asked once: the regions' level directions take them too.
+using Slope = std::optional<std::array<double, 2>>;
+std::vector<Slope> ceiling_slopes(const ModelQuery& q, const std::vector<Sample>& samples, const std::vector<char>& free,
+                                  const Params& p) {
+    const double rise = same_surface_rise(p, p.sampling_distance), overhang_nz = -std::sin(deg_to_rad(p.critical_angle));
+    std::vector<Slope> slope(samples.size());
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+        if (!free[i]) continue;
+        const Vec3& a = samples[i].p;
+        if (const auto hit = ceiling_face_near(q, a.x, a.y, a.z, rise, overhang_nz))
+            slope[i] = std::array<double, 2>{-hit->normal.x / hit->normal.z, -hit->normal.y / hit->normal.z};
     }
-};
-
-// The slope of the ceiling's face right above a sample (as ceiling_near finds it), rise per mm
-// along x and y; nothing where no overhang face is there.
-std::optional<std::array<double, 2>> ceiling_slope(const ModelQuery& q, const Vec3& a, double rise, double overhang_nz) {
-    const auto hit = ceiling_face_near(q, a.x, a.y, a.z, rise, overhang_nz);
-    if (!hit) return std::nullopt;
-    return std::array<double, 2>{-hit->normal.x / hit->normal.z, -hit->normal.y / hit->normal.z};
+    return slope;
 }
 
 // A sample's ceiling is level along a direction (local_level) where a sampling distance across it
@@ -323,13 +333,9 @@ constexpr double kLevelSplitContrast = 10.0;
 // distance across the least-slope direction changes height by more than half a layer more than
 // along it and by kLevelSplitContrast times as much. A unit vector, or zero where the ceiling is
 // flat or curved alike every way (a flat roof, a dome, where a tee's bores cross).
-std::vector<Vec3> local_level(const ModelQuery& q, const std::vector<Sample>& samples, const std::vector<char>& free,
-                              const XyGrid<std::size_t>& grid, const Params& p) {
-    const double sd = p.sampling_distance, overhang_nz = -std::sin(deg_to_rad(p.critical_angle));
-    const double rise = same_surface_rise(p, sd), join_rise = same_surface_rise(p, kRegionJoin * sd);
-    std::vector<std::optional<std::array<double, 2>>> slope(samples.size());
-    for (std::size_t i = 0; i < samples.size(); ++i)
-        if (free[i]) slope[i] = ceiling_slope(q, samples[i].p, rise, overhang_nz);
+std::vector<Vec3> local_level(const std::vector<Slope>& slope, const std::vector<Sample>& samples,
+                              const std::vector<char>& free, const XyGrid<std::size_t>& grid, const Params& p) {
+    const double sd = p.sampling_distance, join_rise = same_surface_rise(p, kRegionJoin * sd);
     std::vector<Vec3> level(samples.size(), Vec3{0, 0, 0});
     for (std::size_t i = 0; i < samples.size(); ++i) {
         if (!free[i]) continue;
@@ -362,7 +368,8 @@ std::vector<Region> free_regions(const ModelQuery& q, const std::vector<Sample>&
         grid.insert(s, i);
     }
     const double rise = same_surface_rise(p, kRegionJoin * sd);
-    const std::vector<Vec3> level = local_level(q, samples, free, grid, p);
+    const std::vector<Slope> slope = ceiling_slopes(q, samples, free, p);
+    const std::vector<Vec3> level = local_level(slope, samples, free, grid, p);
     std::vector<char> seen(samples.size(), 0);
     std::vector<Vec3> along(samples.size(), Vec3{0, 0, 0});
     std::vector<Region> regions;
@@ -399,6 +406,8 @@ std::vector<Region> free_regions(const ModelQuery& q, const std::vector<Sample>&
             });
         }
         std::sort(r.samples.begin(), r.samples.end());
+        for (std::size_t k : r.samples)
+            if (slope[k]) r.slopes.add((*slope[k])[0], (*slope[k])[1]);
         if (r.samples.size() >= kMinRegion) regions.push_back(std::move(r));
     }
     std::sort(regions.begin(), regions.end(),
@@ -694,7 +703,7 @@ bool rows_along_x(const Region& r, const XyGrid<std::size_t>& grid, const std::v
 // tunnel whose axis runs diagonally, a sloped roof whose contour lines do, a twisted blade's
 // underside along its length), where rows along it would be level and rows along `axis` (the
 // axis rows_along_x chose) would not: the slope at each sample is the slope of the face of the
-// ceiling right above it (as ceiling_near finds it), and the direction is the one of least mean
+// ceiling right above it (Region::slopes, as free_regions asked them), and the direction is the one of least mean
 // squared slope over the region's samples (the smaller principal direction of the slopes). Given
 // where it is more than kLevelTurn from the axis, and a sampling distance along the axis changes
 // height by more than half a layer more than along it (rows_along_x's threshold) and by more than
@@ -703,13 +712,9 @@ bool rows_along_x(const Region& r, const XyGrid<std::size_t>& grid, const std::v
 constexpr double kLevelTurn = 5.0;  // degrees
 constexpr double kLevelContrast = 2.0;
 
-std::optional<double> level_direction(const ModelQuery& q, const Region& r, const std::vector<Sample>& samples,
-                                      const Params& p, const Frame& axis) {
-    const double sd = p.sampling_distance, rise = same_surface_rise(p, sd);
-    const double overhang_nz = -std::sin(deg_to_rad(p.critical_angle));
-    SlopeMoments m;
-    for (std::size_t i : r.samples)
-        if (const auto g = ceiling_slope(q, samples[i].p, rise, overhang_nz)) m.add((*g)[0], (*g)[1]);
+std::optional<double> level_direction(const Region& r, const Params& p, const Frame& axis) {
+    const double sd = p.sampling_distance;
+    const SlopeMoments& m = r.slopes;
     if (m.n < kMinRegion) return std::nullopt;
     const double level = m.level_angle();
     const Vec3 d{std::cos(level), std::sin(level), 0};
@@ -1539,7 +1544,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         // (rows along x or y cross a blade's underside as a staircase).
         const Frame axis = Frame::along_axis(rows_along_x(r, grid, samples, p));
         std::vector<RowPlan> plans;
-        if (auto d = level_direction(q, r, samples, p, axis)) plans.push_back(plan_rows(q, r, grid, Frame::along(*d), samples, p, overhang_nz));
+        if (auto d = level_direction(r, p, axis)) plans.push_back(plan_rows(q, r, grid, Frame::along(*d), samples, p, overhang_nz));
         plans.insert(plans.begin(), plan_rows(q, r, std::move(grid), axis, samples, p, overhang_nz));
         const RowPlan* chosen = &plans.front();
         auto lay = [&](const RowPlan& plan, double span, const std::vector<Vec3>* prefer_near, bool fewer_rows = false) -> std::optional<Layout> {
