@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <numeric>
 #include <optional>
 #include <array>
+#include <set>
+#include <tuple>
 
 #include "core/flat_index.hpp"
 #include "core/rules.hpp"
@@ -236,6 +239,7 @@ struct Run {
     std::vector<double> floor;
     std::vector<double> thickness;
     bool join = false;
+    bool tail = false;  // an outer row's tail (add_tails)
 };
 
 // The moments of a ceiling's slopes (rise per mm along x and y) over some of its points: the
@@ -632,7 +636,7 @@ bool can_end_at(const Run& w, double end, const Frame& f, bool high_end) {
 // higher, of the stations around it (the ceiling between them is not known finer).
 void end_at(Run& w, double end, const Frame& f, bool high_end) {
     Run kept;
-    kept.join = w.join;
+    kept.join = w.join, kept.tail = w.tail;
     double z = INFINITY, floor = -INFINITY, thickness = 0;
     for (std::size_t i = 0; i < w.top.size(); ++i) {
         const double u = f.u(w.top[i]);
@@ -654,6 +658,7 @@ struct RegionWalls {
     double length = 0;        // of all walls, mm
     std::size_t pieces = 0;   // separate meanders (islands per layer)
     std::size_t turned = 0;   // joins placed at the other end than the meander's (prefer_near)
+    std::size_t tails = 0;    // the outer rows' tails (add_tails)
     double height = 0;        // mean top height
 };
 
@@ -739,6 +744,7 @@ struct RowPlan {
     std::vector<Run> lo_runs, hi_runs;
     bool moved = false;        // an outer row stands beyond the outer samples
     double mid = 0, across = 0;  // the rows' middle and the outer rows' distance
+    std::vector<Vec3> members;   // the region's samples
 };
 
 RowPlan plan_rows(const ModelQuery& q, const Region& r, XyGrid<std::size_t> grid, const Frame& f,
@@ -746,8 +752,10 @@ RowPlan plan_rows(const ModelQuery& q, const Region& r, XyGrid<std::size_t> grid
     const double inset = 0.5 * p.wall_thickness + tip_side_clearance(p) + 0.5 * kStation;
     // The region's extent across and along the rows (its box, in the axes' frames).
     double lo_u = INFINITY, hi_u = -INFINITY, lo_v = INFINITY, hi_v = -INFINITY;
+    std::vector<Vec3> members;
     for (std::size_t i : r.samples) {
         const Vec3& a = samples[i].p;
+        members.push_back(a);
         lo_u = std::min(lo_u, f.u(a)), hi_u = std::max(hi_u, f.u(a)), lo_v = std::min(lo_v, f.v(a)), hi_v = std::max(hi_v, f.v(a));
     }
     const double u0 = lo_u - p.sampling_distance, u1 = hi_u + p.sampling_distance;
@@ -773,7 +781,7 @@ RowPlan plan_rows(const ModelQuery& q, const Region& r, XyGrid<std::size_t> grid
     };
     auto one_row = [&](double v, const Params& walls) {
         auto runs = walls_along(q, grid, samples, f, v, u0, u1, walls, overhang_nz);
-        return RowPlan{std::move(grid), f, u0, u1, v, v, runs, runs, false, v, 0};
+        return RowPlan{std::move(grid), f, u0, u1, v, v, runs, runs, false, v, 0, members};
     };
     if (hi_v - lo_v - 2 * inset <= 0) return one_row(0.5 * (lo_v + hi_v), p);
     auto [v_lo, lo_runs] = outer_row(lo_v, -1);
@@ -790,7 +798,7 @@ RowPlan plan_rows(const ModelQuery& q, const Region& r, XyGrid<std::size_t> grid
     const bool moved = v_lo != lo_v + inset || v_hi != hi_v - inset;
     const double mid = moved ? 0.5 * (v_lo + v_hi) : 0.5 * (lo_v + hi_v);
     const double across = moved ? v_hi - v_lo : hi_v - lo_v - 2 * inset;
-    return {std::move(grid), f, u0, u1, v_lo, v_hi, std::move(lo_runs), std::move(hi_runs), moved, mid, across};
+    return {std::move(grid), f, u0, u1, v_lo, v_hi, std::move(lo_runs), std::move(hi_runs), moved, mid, across, std::move(members)};
 }
 
 // The region's walls: its planned outer rows, as few rows between as keep them at most `span`
@@ -799,9 +807,91 @@ RowPlan plan_rows(const ModelQuery& q, const Region& r, XyGrid<std::size_t> grid
 // along both its edges; the wall's reach from there, less the inset the outer rows stand at).
 double most_pull(const Params& p) { return wall_reach(p) - tip_side_clearance(p) - 0.5 * kStation; }
 
+// A region that narrows along its rows (a blade tapering to its tip, a wedge-shaped ledge): its
+// outer row, laid straight at the region's widest, runs off the rim where the rim turns in, and the
+// samples past its end that the next row does not reach stay with the tree (each blade of
+// bench/validation/propeller kept about 20 tips that way). So the outer row goes on stepped in:
+// from its end, on the nearest line a station at a time towards the next row on which a wall
+// fits from there on, joined to the end by a short jog across: one line turning twice, the same
+// island on every layer. At most kMostTails steps at each end; never closer to the next row than
+// two walls' thickness (a slot narrower than a wall, plan_rows).
+constexpr int kMostTails = 8;
+
+// A run made one flat piece: its top the lowest, its floor the highest, its thickness the
+// thickest of its stations; false where its floor is not flat (within half a layer).
+bool flatten(Run& w, const Params& p) {
+    const auto [lo, hi] = std::minmax_element(w.floor.begin(), w.floor.end());
+    if (*hi - *lo > 0.5 * p.layer_height) return false;
+    double top = INFINITY;
+    for (const Vec3& x : w.top) top = std::min(top, x.z);
+    for (Vec3& x : w.top) x.z = top;
+    std::fill(w.floor.begin(), w.floor.end(), *hi);
+    std::fill(w.thickness.begin(), w.thickness.end(), *std::max_element(w.thickness.begin(), w.thickness.end()));
+    return true;
+}
+
+// The tails of one outer row (`row`, at v_row; the next row at v_next): appended to `row`, each
+// with its `chain` (the run it goes on from's), and their jogs to `jogs`; `jogged` per run of
+// `row`: which of its ends (low, high) a jog holds.
+void add_tails(const ModelQuery& q, const RowPlan& plan, const std::vector<Sample>& samples, const Params& p,
+               double overhang_nz, double v_row, double v_next, std::vector<Run>& row, std::vector<int>& chain,
+               std::vector<std::array<char, 2>>& jogged, std::vector<Run>& jogs, bool wide_ref) {
+    const Frame& f = plan.f;
+    const double inward = v_next > v_row ? 1 : -1;
+    // How far along the rows the region's samples go on the outer row's side of the next row.
+    double need_lo = INFINITY, need_hi = -INFINITY;
+    for (const Vec3& a : plan.members)
+        if ((f.v(a) - v_next) * inward < 0) need_lo = std::min(need_lo, f.u(a)), need_hi = std::max(need_hi, f.u(a));
+    if (row.empty() || !(need_lo <= need_hi)) return;
+    for (const bool high_end : {false, true}) {
+        std::size_t at = 0;  // the run reaching furthest that way
+        for (std::size_t i = 1; i < row.size(); ++i)
+            if (high_end ? f.u(row[i].top.back()) > f.u(row[at].top.back()) : f.u(row[i].top.front()) < f.u(row[at].top.front()))
+                at = i;
+        for (int n = 0; n < kMostTails; ++n) {
+            const Run& last = row[at];
+            const double end = f.u(high_end ? last.top.back() : last.top.front());
+            if (high_end ? end >= need_hi - kStation : end <= need_lo + kStation) break;
+            const double v_last = f.v(last.top.front());
+            const double t = high_end ? last.thickness.back() : last.thickness.front();
+            // The jog's outer face is flush with the end; the tail starts at its inner face.
+            const double u_jog = high_end ? end - 0.5 * t : end + 0.5 * t, start = high_end ? end - t : end + t;
+            const double from = high_end ? start : start - kStation * std::floor((start - plan.u0) / kStation);
+            const double to = high_end ? plan.u1 : start;
+            std::optional<Run> tail, jog;
+            for (int k = 1; !tail; ++k) {
+                const double v = v_last + inward * k * kStation;
+                if ((v_next - v) * inward < 2 * p.wall_thickness) break;
+                auto runs = walls_along(q, plan.grid, samples, f, v, from, to, p, overhang_nz, wide_ref);
+                if (runs.empty()) continue;
+                Run& first = high_end ? runs.front() : runs.back();
+                if (std::abs(f.u(high_end ? first.top.front() : first.top.back()) - start) > 1e-6) continue;
+                // A tail holds the rim along its length, a long top (a shorter one holds the ceiling
+                // at its middle only: a step round a post at a lid's corner, not a rim turning in).
+                if (horizontal_distance(first.top.front(), first.top.back()) < long_top(p, first.thickness.front())) continue;
+                // The jog reaches from the row's outer face to the tail's inner one, as one flat
+                // piece (the lowest top over it): a step of a station is shorter than a tall
+                // wall is thick (the strength rule's), and a piece shorter than it is not built.
+                jog = join_at(q, plan.grid, samples, f, u_jog, v_last - inward * 0.5 * t, v + inward * 0.5 * first.thickness.front(),
+                              p, overhang_nz, wide_ref);
+                if (!jog || !flatten(*jog, p)) continue;
+                tail = std::move(first), tail->tail = true;
+            }
+            if (!tail) break;
+            jogged[at][high_end ? 1 : 0] = 1;
+            jogs.push_back(std::move(*jog));
+            row.push_back(std::move(*tail));
+            chain.push_back(chain[at]);
+            jogged.push_back({0, 0});
+            jogged.back()[high_end ? 0 : 1] = 1;
+            at = row.size() - 1;
+        }
+    }
+}
+
 RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::vector<Sample>& samples, const Params& p,
                          double overhang_nz, double span, const std::vector<Vec3>* prefer_near = nullptr,
-                         bool fewer_rows = false) {
+                         bool fewer_rows = false, bool tails = false) {
     const XyGrid<std::size_t>& grid = plan.grid;
     const Frame& f = plan.f;
     std::vector<std::vector<Run>> by_row;
@@ -830,9 +920,30 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
         }
     }
     RegionWalls out;
+    // The outer rows' tails (add_tails), where the region narrows past their ends.
+    std::vector<std::vector<int>> chain(by_row.size());
+    std::vector<std::vector<std::array<char, 2>>> jogged(by_row.size());
+    for (std::size_t j = 0; j < by_row.size(); ++j) {
+        chain[j].resize(by_row[j].size());
+        std::iota(chain[j].begin(), chain[j].end(), 0);
+        jogged[j].assign(by_row[j].size(), {0, 0});
+    }
+    std::vector<Run> jogs;
+    if (tails && by_row.size() >= 2)
+        for (const std::size_t j : {std::size_t{0}, by_row.size() - 1}) {
+            const std::size_t next = j == 0 ? 1 : j - 1;
+            add_tails(q, plan, samples, p, overhang_nz, row_v[j], row_v[next], by_row[j], chain[j], jogged[j], jogs,
+                      prefer_near != nullptr);
+        }
     std::vector<std::vector<char>> joined(by_row.size());
     for (std::size_t j = 0; j < by_row.size(); ++j) joined[j].assign(by_row[j].size(), 0);
     std::size_t joins = 0;
+    // One join between two rows' chains (a row and its tails): a second would close a cell.
+    std::set<std::tuple<std::size_t, int, int>> chains_joined;
+    // Where a run stands across: its row's line, or a tail's own.
+    auto run_v = [&](std::size_t j, std::size_t a) {
+        return chain[j][a] == static_cast<int>(a) ? row_v[j] : f.v(by_row[j][a].top.front());
+    };
     // Alternate ends: a meander, one line through the region. With `prefer_near` (samples the
     // meander leaves to the tree) a join goes to the other end where that end is nearer to one of
     // them, within a coverage reach (a rim or a narrow strip at the rows' ends): one join per pair
@@ -854,7 +965,7 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
                 const double a0 = f.u(wa.front()), a1 = f.u(wa.back());
                 const double b0 = f.u(wb.front()), b1 = f.u(wb.back());
                 const double lo = std::max(a0, b0), hi = std::min(a1, b1);
-                if (hi - lo < kMinWall) continue;
+                if (hi - lo < kMinWall || chains_joined.count({j, chain[j][a], chain[j + 1][b]})) continue;
                 // The join's outer face is flush with the rows' ends, which are cut back to it: a
                 // slicer then prints the corner as one line turning (a stub or a T beside it
                 // becomes a line of its own).
@@ -867,15 +978,18 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
                 }
                 for (int end_tried = 0; end_tried < (turned ? 2 : 1); ++end_tried, high_end = !high_end)
                 for (int k = 0; k < 4; ++k) {
+                    // An end a tail's jog holds is not cut back.
+                    if (jogged[j][a][high_end ? 1 : 0] || jogged[j + 1][b][high_end ? 1 : 0]) break;
                     const double u = high_end ? hi - half - k * kStation : lo + half + k * kStation;
                     const double end = high_end ? u + half : u - half;
                     if (!can_end_at(by_row[j][a], end, f, high_end) || !can_end_at(by_row[j + 1][b], end, f, high_end))
                         break;
-                    if (auto w = join_at(q, grid, samples, f, u, row_v[j], row_v[j + 1], p, overhang_nz, prefer_near != nullptr)) {
+                    if (auto w = join_at(q, grid, samples, f, u, run_v(j, a), run_v(j + 1, b), p, overhang_nz, prefer_near != nullptr)) {
                         end_at(by_row[j][a], end, f, high_end);
                         end_at(by_row[j + 1][b], end, f, high_end);
                         out.walls.push_back(*w);
                         joined[j][a] = joined[j + 1][b] = 1;
+                        chains_joined.insert({j, chain[j][a], chain[j + 1][b]});
                         ++joins;
                         if (turned && end_tried == 0) ++out.turned;
                         end_tried = 2;  // placed: the other end is not tried
@@ -890,6 +1004,8 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
             out.walls.push_back(std::move(by_row[j][a]));
             ++rows_kept;
         }
+    out.tails = jogs.size();
+    for (Run& jog : jogs) out.walls.push_back(std::move(jog)), ++joins;
     double height_sum = 0;
     std::size_t stations = 0;
     for (const auto& w : out.walls) {
@@ -961,7 +1077,8 @@ std::vector<CeilingWall> flat_pieces(const Run& r, const Params& p) {
         const std::size_t k = piece.end;
         const double t = thickest(i, k);
         if (length(i, k) >= t)
-            out.push_back({{r.top[i].x, r.top[i].y, 0}, {r.top[k].x, r.top[k].y, 0}, piece.floor, piece.top, r.join, t});
+            out.push_back({{r.top[i].x, r.top[i].y, 0}, {r.top[k].x, r.top[k].y, 0}, piece.floor, piece.top, r.join, t}),
+                out.back().tail = r.tail;
         i = k;
     }
     return out;
@@ -1546,11 +1663,12 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         std::vector<RowPlan> plans;
         if (auto d = level_direction(r, p, axis)) plans.push_back(plan_rows(q, r, grid, Frame::along(*d), samples, p, overhang_nz));
         plans.insert(plans.begin(), plan_rows(q, r, std::move(grid), axis, samples, p, overhang_nz));
-        const RowPlan* chosen = &plans.front();
-        auto lay = [&](const RowPlan& plan, double span, const std::vector<Vec3>* prefer_near, bool fewer_rows = false) -> std::optional<Layout> {
+        auto lay = [&](const RowPlan& plan, double span, const std::vector<Vec3>* prefer_near, bool fewer_rows = false,
+                       bool tails = false) -> std::optional<Layout> {
             Layout l;
             l.span = span;
-            l.w = region_walls(q, plan, samples, p, overhang_nz, span, prefer_near, fewer_rows);
+            l.w = region_walls(q, plan, samples, p, overhang_nz, span, prefer_near, fewer_rows, tails);
+            if (tails && l.w.tails == 0) return std::nullopt;  // the layout without them
             if (l.w.walls.empty() || enters_blocker(l.w.walls, blockers, p)) return std::nullopt;
             if (prefer_near && l.w.turned == 0) return std::nullopt;  // the meander again
             for (const Run& run : l.w.walls)
@@ -1571,18 +1689,25 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
             for (std::size_t i : left) l.left.push_back(samples[i]);
             return l;
         };
-        std::optional<Layout> best;
-        for (const RowPlan& plan : plans) {
-            std::optional<Layout> mine;
-            for (double span : {p.ceiling_span, tight}) {
-                if (mine && (mine->left.empty() || span == p.ceiling_span || mine->tops.narrow < 0.5 * mine->tops.length)) break;
-                auto l = lay(plan, span, nullptr);
-                if (l && (!mine || l->left.size() < mine->left.size())) mine = std::move(l);
+        // The layout leaving fewest samples over the plans and spans (with `tails`: only layouts
+        // where the outer rows get tails, add_tails), and its plan.
+        auto choose = [&](bool tails) {
+            std::optional<Layout> best;
+            const RowPlan* chosen = &plans.front();
+            for (const RowPlan& plan : plans) {
+                std::optional<Layout> mine;
+                for (double span : {p.ceiling_span, tight}) {
+                    if (mine && (mine->left.empty() || span == p.ceiling_span || mine->tops.narrow < 0.5 * mine->tops.length)) break;
+                    auto l = lay(plan, span, nullptr, false, tails);
+                    if (l && (!mine || l->left.size() < mine->left.size())) mine = std::move(l);
+                }
+                if (mine && (!best || mine->left.size() < best->left.size() ||
+                             (mine->left.size() == best->left.size() && mine->pieces.size() < best->pieces.size())))
+                    best = std::move(mine), chosen = &plan;
             }
-            if (mine && (!best || mine->left.size() < best->left.size() ||
-                         (mine->left.size() == best->left.size() && mine->pieces.size() < best->pieces.size())))
-                best = std::move(mine), chosen = &plan;
-        }
+            return std::pair{std::move(best), chosen};
+        };
+        auto [best, chosen] = choose(false);  // the layout without tails, as before them
         if (!best) continue;
         std::vector<Sample> own;
         for (std::size_t i : r.samples) own.push_back(samples[i]);
@@ -1616,20 +1741,37 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         };
         auto cost = price(*best);
         // Where the meander leaves samples at the rows' open ends (a rim, a narrow strip beside
-        // the region), its joins at the ends near them: kept where that is faster on both routes.
+        // the region), its joins at the ends near them; a row fewer, the span apart (the outer rows
+        // pulled in from the outer samples) where it carries as much: each kept where it is faster
+        // on both routes. `near_left` holds the samples a layout's joins were turned to.
+        auto refine = [&](std::optional<Layout>& best, std::optional<std::pair<double, double>>& cost, const RowPlan& chosen,
+                          std::vector<Vec3>& near_left, bool tails) {
+            if (!best->left.empty()) {
+                for (const Sample& x : best->left) near_left.push_back(x.p);
+                auto turned = lay(chosen, best->span, &near_left, false, tails);
+                if (turned && turned->left.size() < best->left.size())
+                    if (auto c = price(*turned); c && (!cost || (c->first < cost->first && c->second < cost->second)))
+                        best = std::move(turned), cost = c;
+            }
+            if (auto fewer = lay(chosen, best->span, nullptr, true, tails); fewer && fewer->left.size() <= best->left.size())
+                if (auto c = price(*fewer); c && (!cost || (c->first < cost->first && c->second < cost->second)))
+                    best = std::move(fewer), cost = c;
+        };
+        std::vector<Vec3> near_left, near_left_tailed;
+        refine(best, cost, *chosen, near_left, false);
+        // The outer rows with tails where the region narrows past their ends (add_tails), laid out
+        // and refined the same way: kept where they carry more and are faster on both routes (under
+        // stanford_bunny's belly they carried one sample more and the region's walls lost to its
+        // tree on the Cura route).
         if (!best->left.empty()) {
-            std::vector<Vec3> near_left;
-            for (const Sample& x : best->left) near_left.push_back(x.p);
-            auto turned = lay(*chosen, best->span, &near_left);
-            if (turned && turned->left.size() < best->left.size())
-                if (auto c = price(*turned); c && (!cost || (c->first < cost->first && c->second < cost->second)))
-                    best = std::move(turned), cost = c;
+            auto [tailed, tailed_plan] = choose(true);
+            if (tailed && tailed->left.size() < best->left.size()) {
+                auto tailed_cost = price(*tailed);
+                refine(tailed, tailed_cost, *tailed_plan, near_left_tailed, true);
+                if (tailed_cost && (!cost || (tailed_cost->first < cost->first && tailed_cost->second < cost->second)))
+                    best = std::move(tailed), cost = tailed_cost;
+            }
         }
-        // A row fewer, the span apart (the outer rows pulled in from the outer samples): where it
-        // carries as much and is faster on both routes.
-        if (auto fewer = lay(*chosen, best->span, nullptr, true); fewer && fewer->left.size() <= best->left.size())
-            if (auto c = price(*fewer); c && (!cost || (c->first < cost->first && c->second < cost->second)))
-                best = std::move(fewer), cost = c;
         if (!cost) continue;
         // Either slicer may print it: walls only where both print them faster.
         bool taken = cost->first < tree_cura && cost->second < tree_prusa;

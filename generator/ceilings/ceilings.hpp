@@ -22,8 +22,12 @@
 //               bore's or tunnel's ceiling goes on past its outer samples), else just inside the
 //               outer samples; where rows the span apart leave samples, also rows 0.9 x twice the
 //               walls' reach apart (a slope's staircase is held at each piece's middle only), the
-//               layout leaving fewer kept; each row is cut into walls where the ceiling above it is an overhang of this region all across the
-//               wall's width plus tip_side_clearance (a wall beside it ends a wall); a row goes
+//               layout leaving fewer kept; where the region narrows past an outer row's end (a
+//               tapering blade), also the outer row going on stepped in towards the next row
+//               (tails, each joined to where the row ended by a short jog: one line), kept where
+//               it carries more and is faster on both routes; each row is cut into walls where
+//               the ceiling above it is an overhang of this region all across the wall's width
+//               plus tip_side_clearance (a wall beside it ends a wall); a row goes
 //               on under a hole through its ceiling up to kMostCrossed long (ceilings.cpp
 //               may_cross; the hybrid's up to one piece), not under a pocket in it
 //     floors    the bed, or a level face of the model (a gap above it): walls under a roof over
@@ -92,6 +96,8 @@ struct CeilingWall {
     // .prusa.3mf leaves the bridges out.
     bool bridge = false;
     double row_thickness = 0;  // a bridge's: the thickness of the rows it lies between
+    bool tail = false;  // a piece of an outer row's tail, stepped in where the region narrows (ceilings.cpp,
+                        // add_tails): it lies between two rows, so slabs leave it out
 };
 
 // What a tree grown from some samples alone would give a slicer to print, counted as

@@ -103,30 +103,38 @@ std::vector<CeilingWall> stand_alone(std::vector<CeilingWall> bridges, const Par
 
 std::vector<CeilingWall> join_rows_into_slabs(const ModelQuery& q, std::vector<CeilingWall> walls, const Params& p) {
     if (p.ceiling_span <= 0) return walls;
-    // The rows' pieces, gathered into lines (same direction, same offset across it).
+    // The rows' pieces, gathered into lines (same direction, same offset across it); the tails'
+    // apart (ceilings.cpp, add_tails: an outer row stepped in where its region narrows).
     struct Line {
         OnLine frame;                     // of its first piece
         std::vector<std::size_t> pieces;  // along it in order
+        int side = 0;                     // where its bridges lie: -1 the lower offset, +1 the higher, 0 none
+        std::vector<std::pair<double, double>> bridged;  // along it, where they stand
     };
-    std::vector<Line> lines;
-    for (std::size_t i = 0; i < walls.size(); ++i) {
-        const CeilingWall& w = walls[i];
-        if (w.join || w.on_tree || w.bridge || horizontal_distance(w.from, w.to) <= 0) continue;
-        const OnLine l = on_line(w);
-        auto same = std::find_if(lines.begin(), lines.end(), [&](const Line& x) {
-            return same_direction(x.frame, l) && std::abs(x.frame.offset - l.offset) <= kSame;
-        });
-        if (same == lines.end()) lines.push_back({l, {i}});
-        else same->pieces.push_back(i);
-    }
     auto along = [](const OnLine& l, const Vec3& x) { return x.x * l.d.x + x.y * l.d.y; };
-    for (Line& line : lines)
-        std::sort(line.pieces.begin(), line.pieces.end(), [&](std::size_t a, std::size_t b) {
-            return std::min(along(line.frame, walls[a].from), along(line.frame, walls[a].to)) <
-                   std::min(along(line.frame, walls[b].from), along(line.frame, walls[b].to));
-        });
-    // In order across, so each line meets its neighbour first.
-    std::stable_sort(lines.begin(), lines.end(), [](const Line& a, const Line& b) { return a.frame.offset < b.frame.offset; });
+    auto lines_of = [&](bool tails) {
+        std::vector<Line> lines;
+        for (std::size_t i = 0; i < walls.size(); ++i) {
+            const CeilingWall& w = walls[i];
+            if (w.join || w.tail != tails || w.on_tree || w.bridge || horizontal_distance(w.from, w.to) <= 0) continue;
+            const OnLine l = on_line(w);
+            auto same = std::find_if(lines.begin(), lines.end(), [&](const Line& x) {
+                return same_direction(x.frame, l) && std::abs(x.frame.offset - l.offset) <= kSame;
+            });
+            if (same == lines.end()) lines.push_back({l, {i}, 0, {}});
+            else same->pieces.push_back(i);
+        }
+        for (Line& line : lines)
+            std::sort(line.pieces.begin(), line.pieces.end(), [&](std::size_t a, std::size_t b) {
+                return std::min(along(line.frame, walls[a].from), along(line.frame, walls[a].to)) <
+                       std::min(along(line.frame, walls[b].from), along(line.frame, walls[b].to));
+            });
+        // In order across, so each line meets its neighbour first.
+        std::stable_sort(lines.begin(), lines.end(), [](const Line& a, const Line& b) { return a.frame.offset < b.frame.offset; });
+        return lines;
+    };
+    std::vector<Line> lines = lines_of(false);
+    const std::vector<Line> tails = lines_of(true);
     // A bridge lower than two layers saves less than its two ends print.
     const double clearance = tip_side_clearance(p), least_height = 2 * p.layer_height;
     auto thinnest = [&](const Line& x) {
@@ -134,52 +142,113 @@ std::vector<CeilingWall> join_rows_into_slabs(const ModelQuery& q, std::vector<C
         for (std::size_t k : x.pieces) t = std::min(t, walls[k].thickness);
         return t;
     };
-    std::vector<char> paired(lines.size(), 0);
+    // The bridges between two lines (`a` at the lower offset): one under each stretch where a piece
+    // of one runs beside a piece of the other, as high as both stand there, outside `taken` (along
+    // them). All of them between the same two planes, a hair into the thinnest piece of each line
+    // (the strength rule thickens taller pieces a little), so bridges meeting end to end meet face
+    // to face, corner on corner.
+    auto bridges_between = [&](const Line& a, const Line& b, const std::vector<std::pair<double, double>>& taken) {
+        const OnLine &l = a.frame, &m = b.frame;
+        std::vector<CeilingWall> bridges;
+        const double inner0 = l.offset + 0.5 * thinnest(a), inner1 = m.offset - 0.5 * thinnest(b);
+        for (std::size_t ia : a.pieces)
+            for (std::size_t ib : b.pieces) {
+                const CeilingWall &wa = walls[ia], &wb = walls[ib];
+                const double bottom = std::max(wa.bottom, wb.bottom), top = std::min(wa.top, wb.top);
+                if (top - bottom < least_height) continue;
+                if (std::abs(wa.bottom - wb.bottom) > kMostFootStepOfLayer * p.layer_height) continue;
+                const double lo = std::max(std::min(along(l, wa.from), along(l, wa.to)), std::min(along(l, wb.from), along(l, wb.to)));
+                const double hi = std::min(std::max(along(l, wa.from), along(l, wa.to)), std::max(along(l, wb.from), along(l, wb.to)));
+                // The stretch less what is taken.
+                std::vector<std::pair<double, double>> free{{lo, hi}};
+                for (const auto& [t0, t1] : taken) {
+                    std::vector<std::pair<double, double>> left;
+                    for (const auto& [f0, f1] : free) {
+                        if (t0 > f0) left.push_back({f0, std::min(f1, t0)});
+                        if (t1 < f1) left.push_back({std::max(f0, t1), f1});
+                    }
+                    free = std::move(left);
+                }
+                for (auto [f0, f1] : free) {
+                    if (f1 - f0 <= kSame) continue;
+                    // Where it meets a bridge taken, it reaches kIntoRows into it: no corner of
+                    // one on a corner of the other (bridges of other widths), so each stays a
+                    // closed solid of its own to `check`.
+                    if (f0 > lo + kSame) f0 -= kIntoRows;
+                    if (f1 < hi - kSame) f1 += kIntoRows;
+                    // The bridge, and the air over it, keep the clearance the rows keep.
+                    if (model_in_box(q, l, f0 - clearance, f1 + clearance, inner0, inner1, bottom + 1e-3, top + p.gap - 1e-3))
+                        continue;
+                    CeilingWall bridge = wa;
+                    const double middle = 0.5 * (inner0 + inner1);
+                    bridge.from = at(l, f0, middle, 0), bridge.to = at(l, f1, middle, 0);
+                    bridge.bottom = bottom, bridge.top = top;
+                    bridge.thickness = inner1 - inner0 + 2 * kIntoRows, bridge.row_thickness = 0.5 * (wa.thickness + wb.thickness);
+                    bridge.join = false, bridge.tail = false, bridge.bridge = true;
+                    bridges.push_back(bridge);
+                }
+            }
+        return stand_alone(std::move(bridges), p, least_height);
+    };
+    auto length_of = [](const std::vector<CeilingWall>& bridges) {
+        double length = 0;
+        for (const CeilingWall& b : bridges) length += horizontal_distance(b.from, b.to);
+        return length;
+    };
+    auto record = [&](Line& x, int side, const std::vector<CeilingWall>& bridges) {
+        x.side = side;
+        for (const CeilingWall& b : bridges)
+            x.bridged.push_back(std::minmax(along(x.frame, b.from), along(x.frame, b.to)));
+    };
     std::vector<CeilingWall> added;
     for (std::size_t i = 0; i < lines.size(); ++i) {
-        if (paired[i]) continue;
+        if (lines[i].side) continue;
         const OnLine& l = lines[i].frame;
         for (std::size_t j = i + 1; j < lines.size(); ++j) {
             const OnLine& m = lines[j].frame;
             const double apart = m.offset - l.offset;
             if (apart > p.ceiling_span + kSame) break;  // in order across: no farther line is nearer
-            if (paired[j] || apart <= kSame || !same_direction(l, m)) continue;
-            // A bridge under each stretch where a piece of one line runs beside a piece of the other,
-            // as high as both stand there. All of them between the same two planes, a hair into the
-            // thinnest piece of each line (the strength rule thickens taller pieces a little), so
-            // bridges meeting end to end meet face to face, corner on corner.
-            std::vector<CeilingWall> bridges;
-            double length = 0;
-            const double inner0 = l.offset + 0.5 * thinnest(lines[i]), inner1 = m.offset - 0.5 * thinnest(lines[j]);
-            for (std::size_t a : lines[i].pieces)
-                for (std::size_t b : lines[j].pieces) {
-                    const CeilingWall &wa = walls[a], &wb = walls[b];
-                    const double lo = std::max(std::min(along(l, wa.from), along(l, wa.to)), std::min(along(l, wb.from), along(l, wb.to)));
-                    const double hi = std::min(std::max(along(l, wa.from), along(l, wa.to)), std::max(along(l, wb.from), along(l, wb.to)));
-                    const double bottom = std::max(wa.bottom, wb.bottom), top = std::min(wa.top, wb.top);
-                    if (hi - lo <= kSame || top - bottom < least_height) continue;
-                    if (std::abs(wa.bottom - wb.bottom) > kMostFootStepOfLayer * p.layer_height) continue;
-                    // The bridge, and the air over it, keep the clearance the rows keep.
-                    if (model_in_box(q, l, lo - clearance, hi + clearance, inner0, inner1, bottom + 1e-3, top + p.gap - 1e-3))
-                        continue;
-                    CeilingWall bridge = wa;
-                    const double middle = 0.5 * (inner0 + inner1);
-                    bridge.from = at(l, lo, middle, 0), bridge.to = at(l, hi, middle, 0);
-                    bridge.bottom = bottom, bridge.top = top;
-                    bridge.thickness = inner1 - inner0 + 2 * kIntoRows, bridge.row_thickness = 0.5 * (wa.thickness + wb.thickness);
-                    bridge.join = false, bridge.bridge = true;
-                    bridges.push_back(bridge);
-                    length += hi - lo;
-                }
-            bridges = stand_alone(std::move(bridges), p, least_height);
-            length = 0;
-            for (const CeilingWall& b : bridges) length += horizontal_distance(b.from, b.to);
+            if (lines[j].side || apart <= kSame || !same_direction(l, m)) continue;
+            std::vector<CeilingWall> bridges = bridges_between(lines[i], lines[j], {});
             // Shorter than the span in all, the slab's two ends add about as much as it saves.
-            if (length < kLeastOverlapOfSpan * p.ceiling_span) continue;
+            if (length_of(bridges) < kLeastOverlapOfSpan * p.ceiling_span) continue;
+            record(lines[i], 1, bridges), record(lines[j], -1, bridges);
             added.insert(added.end(), bridges.begin(), bridges.end());
-            paired[i] = paired[j] = 1;
             break;
         }
+    }
+    // A tail stands between its row's neighbour and where its row ended: the neighbour's slab with
+    // that row goes on beside the tail (its ends are the slab's, no new ones: no least length),
+    // where the neighbour has no bridge yet on the tail's side. The neighbour is the line the span
+    // or less away that runs beside the tail longest (the row it was stepped from only meets it at
+    // the jog). Left out where the neighbour's bridges lie on its other side: a slab of three rows
+    // would bury the middle one.
+    for (const Line& t : tails) {
+        std::size_t best = lines.size();
+        double best_length = 0;
+        for (std::size_t i = 0; i < lines.size(); ++i) {
+            const Line& n = lines[i];
+            const double apart = t.frame.offset - n.frame.offset;
+            if (std::abs(apart) > p.ceiling_span + kSame || std::abs(apart) <= kSame || !same_direction(t.frame, n.frame)) continue;
+            double beside = 0;
+            for (std::size_t a : t.pieces)
+                for (std::size_t b : n.pieces) {
+                    const OnLine& l = n.frame;
+                    beside += std::max(0.0, std::min(std::max(along(l, walls[a].from), along(l, walls[a].to)),
+                                                     std::max(along(l, walls[b].from), along(l, walls[b].to))) -
+                                                std::max(std::min(along(l, walls[a].from), along(l, walls[a].to)),
+                                                         std::min(along(l, walls[b].from), along(l, walls[b].to))));
+                }
+            if (beside > best_length) best = i, best_length = beside;
+        }
+        if (best == lines.size()) continue;
+        Line& n = lines[best];
+        const int side = t.frame.offset > n.frame.offset ? 1 : -1;
+        if (n.side == -side) continue;
+        std::vector<CeilingWall> bridges = side > 0 ? bridges_between(n, t, n.bridged) : bridges_between(t, n, n.bridged);
+        if (bridges.empty()) continue;
+        record(n, side, bridges);
+        added.insert(added.end(), bridges.begin(), bridges.end());
     }
     walls.insert(walls.end(), added.begin(), added.end());
     return walls;

@@ -14,7 +14,10 @@
 //     lines      the pieces that are neither joins nor on the tree, gathered by their line (same
 //                direction, same offset across it)
 //     pairs      in order across, a line pairs with the first line of its direction the span or
-//                less beyond it; a line pairs once, so pairs alternate (rows 1-2, 3-4, ...)
+//                less beyond it; a line pairs once, so pairs alternate (rows 1-2, 3-4, ...); an
+//                outer row's tails (ceilings.hpp, rows) pair after, each with the line beside it
+//                longest, where that line's bridges lie on the tail's side or nowhere: its slab goes
+//                on beside the tail
 //     bridges    one for each stretch where a piece of one line runs beside a piece of the other:
 //                between the rows' inner faces (reaching kIntoRows into each, so that no face of
 //                it lies on one of theirs), from the higher foot to the lower top of the two; the

@@ -201,7 +201,7 @@ std::string wall_data(const Supports& sp) {
     Rows walls;
     for (size_t i = 0; i < sp.walls.size(); ++i) {
         const CeilingWall& w = sp.walls[i];
-        walls.push_back({std::to_string(i) + (w.bridge ? " bridge" : w.join ? " join" : " row") + (w.on_tree ? " on the tree" : ""),
+        walls.push_back({std::to_string(i) + (w.bridge ? " bridge" : w.join ? " join" : w.tail ? " row (tail)" : " row") + (w.on_tree ? " on the tree" : ""),
                          fmt::format("[[{}, {}], [{}, {}], {}, {}, {}{}]", num(w.from.x), num(w.from.y), num(w.to.x), num(w.to.y),
                                      num(w.bottom), num(w.top), num(w.thickness), w.bridge ? ", 1" : "")});
     }

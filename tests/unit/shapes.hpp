@@ -3,6 +3,7 @@
 // overlapping shells): only faces between a filled and an empty cell are emitted.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <tuple>
@@ -116,6 +117,28 @@ inline Mesh cantilever_over_box() {
     g.fill({0, 0, 20}, {30, 10, 22});
     g.fill({12, 2, 0}, {24, 8, 5});
     return g.mesh();
+}
+
+// A tapered, twisted blade (a propeller's, bench/validation/propeller): a plate 40 mm long along x,
+// 14 mm wide at its root (x = 0) narrowing to 8 at its tip, 1.6 mm thick, its middle line 8 mm over
+// the bed, pitched 35 degrees at its root to 20 at its tip about that line, standing on a post
+// (x -4..0) at its root; triangulated on a 1 mm grid along x. Its underside is level nearly along
+// its length, and its edges turn in towards the tip.
+inline Mesh tapered_blade() {
+    std::vector<double> xs{-4}, ys;
+    for (int i = 0; i <= 40; ++i) xs.push_back(i);
+    for (int j = -7; j <= 7; ++j) ys.push_back(j);
+    CellGrid g(xs, ys, {0, 8, 9.6});
+    g.fill({-4, -7, 0}, {0, 7, 9.6});
+    g.fill({0, -7, 8}, {40, 7, 9.6});
+    Mesh m = g.mesh();
+    for (auto& v : m.vertices) {
+        const double f = std::clamp(v.x, 0.0, 40.0) / 40;
+        v.y *= 1 - f * 3.0 / 7;  // half-width 7 -> 4
+        if (v.z < 8 - 1e-9) continue;
+        v.z += v.y * std::tan((35 - 15 * f) * 3.14159265358979323846 / 180);
+    }
+    return m;
 }
 
 }  // namespace cs::test

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <set>
 
 #include "ceilings/ceilings.hpp"
@@ -944,4 +945,51 @@ TEST(Ceilings, AShortPieceOverItsNeighboursComesDownToWhereItPrints) {
     // Pieces long enough on their own are never touched.
     walls = printable_tops(row({{1, 1.0}, {1, 1.4}, {1, 1.0}}), p);
     EXPECT_DOUBLE_EQ(walls[1].top, 1.4);
+}
+
+namespace {
+
+// Which solid each piece belongs to, seen from above (their footprints; axis-aligned pieces: boxes
+// touching or overlapping are one solid): the index of one piece of it.
+std::vector<std::size_t> solids_from_above(const std::vector<CeilingWall>& walls) {
+    std::vector<std::size_t> set(walls.size());
+    std::iota(set.begin(), set.end(), 0);
+    auto root = [&](std::size_t i) {
+        while (set[i] != i) i = set[i] = set[set[i]];
+        return i;
+    };
+    for (std::size_t i = 0; i < walls.size(); ++i)
+        for (std::size_t j = i + 1; j < walls.size(); ++j) {
+            const Box3 a = wall_box(walls[i], 1e-6), b = wall_box(walls[j], 1e-6);
+            if (a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y) set[root(i)] = root(j);
+        }
+    for (std::size_t i = 0; i < walls.size(); ++i) set[i] = root(i);
+    return set;
+}
+
+}  // namespace
+
+// A tapered, twisted blade (test::tapered_blade): its outer rows, laid straight at its widest, run
+// off its edges where they turn in towards the tip. They go on stepped in (tails), each tail joined
+// to the row it goes on from by a short jog: the walls carry the samples along the edges to the
+// tip, and each tail is the same island as its row. Without tails (before 2026-12-06) the walls
+// carried 74 of the blade's 96 samples and left those along its edges towards the tip to the tree
+// (propeller's blades kept about 20 tips each); with them, 94.
+TEST(Ceilings, AnOuterRowGoesOnSteppedInWhereTheBladeNarrows) {
+    const Walled w = walled(test::tapered_blade());
+    ASSERT_FALSE(w.ceilings.walls.empty());
+    std::size_t tails = 0;
+    for (const CeilingWall& c : w.ceilings.walls) tails += c.tail;
+    EXPECT_GT(tails, 0u);
+    // Each tail is one solid with a row it goes on from: the same island on every layer.
+    const std::vector<std::size_t> solid = solids_from_above(w.ceilings.walls);
+    for (std::size_t i = 0; i < w.ceilings.walls.size(); ++i) {
+        if (!w.ceilings.walls[i].tail) continue;
+        bool with_row = false;
+        for (std::size_t j = 0; j < w.ceilings.walls.size(); ++j)
+            with_row |= solid[j] == solid[i] && !w.ceilings.walls[j].tail && !w.ceilings.walls[j].join;
+        EXPECT_TRUE(with_row) << "tail " << i << " stands alone";
+    }
+    EXPECT_GE(w.ceilings.covered, 0.95 * w.samples.samples.size());
+    expect_walls_hold_what_they_take(w, "tapered blade");
 }

@@ -202,3 +202,61 @@ TEST(Slabs, AScadsBridgeIsReadBackAsABridge) {
     EXPECT_TRUE(walls[2].bridge);
     EXPECT_DOUBLE_EQ(walls[2].thickness, 2.72);
 }
+
+// A tapered blade's outer rows go on stepped in (tails, ceilings.cpp add_tails), between their
+// neighbour and where they ended. The neighbour's slab goes on beside each tail, its bridges as
+// wide as the tail stands from it; where two widths meet, the tail's bridge reaches a hair into
+// the other, so no corner lies on a corner: each bridge stays a closed solid of its own (the first
+// form of this left one solid open on propeller, which `check` failed), and `check` passes the lot.
+TEST(Slabs, ATailsNeighbourIsSlabbedBesideItAndEverySolidIsClosed) {
+    const Params p;
+    const Mesh model = test::tapered_blade();
+    ModelQuery q(model);
+    const OverhangSamples s = sample_overhangs(model, {p.critical_angle, p.sampling_distance, p.layer_height, touching_space(p)}, &q);
+    const Ceilings c = support_ceilings(q, s.samples, p, dear_tree, {}, 1.0);
+    const std::vector<CeilingWall> walls = join_rows_into_slabs(q, c.walls, p);
+    std::size_t beside_tails = 0;
+    for (const CeilingWall& b : walls) {
+        if (!b.bridge) continue;
+        EXPECT_TRUE(is_closed_and_consistent(wall_mesh(b)));
+        for (const CeilingWall& t : walls)
+            if (t.tail && in_footprint(middle(b), t, 0.5 * b.thickness + 1e-6)) ++beside_tails;
+    }
+    EXPECT_GT(beside_tails, 0u);
+    const Mesh slabs = walls_mesh(walls);
+    for (const Mesh& shell : split_shells(slabs)) EXPECT_TRUE(is_closed_and_consistent(shell));
+    Supports tree = build_supports(model, c.rest, p);
+    Mesh all = tree.mesh;
+    append(all, slabs);
+    const CheckResult r = check_supports(model, all, p, {});
+    EXPECT_TRUE(r.ok()) << r.summary();
+}
+
+// Laid out by hand: a row along x at y = 0 (x 0..20), an outer row at y = 3 that ends at x = 10 and
+// its tail at y = 2.5 (x 9.5..20), all as tall. The slab goes on beside the tail, narrower; where
+// the two bridges meet, the tail's reaches kIntoRows into the other, so no corner of one lies on a
+// corner of the other (on propeller, bridges of two widths meeting corner on corner left `check` a
+// solid it found open), and every piece is a closed solid of its own.
+TEST(Slabs, ATailsBridgeReachesAHairIntoTheWiderOne) {
+    const Params p;
+    const Mesh far_away = test::box({100, 100, 0}, {101, 101, 1});
+    ModelQuery q(far_away);
+    std::vector<CeilingWall> walls{{{0, 0, 0}, {20, 0, 0}, 0, 5, false, 0.5},
+                                   {{0, 3, 0}, {10, 3, 0}, 0, 5, false, 0.5},
+                                   {{9.75, 3.25, 0}, {9.75, 2.25, 0}, 0, 5, true, 0.5},
+                                   {{9.5, 2.5, 0}, {20, 2.5, 0}, 0, 5, false, 0.5}};
+    walls.back().tail = true;
+    walls = join_rows_into_slabs(q, walls, p);
+    std::vector<CeilingWall> bridges;
+    for (const CeilingWall& w : walls)
+        if (w.bridge) bridges.push_back(w);
+    ASSERT_EQ(bridges.size(), 2u);
+    std::sort(bridges.begin(), bridges.end(), [](const CeilingWall& a, const CeilingWall& b) { return a.from.x < b.from.x; });
+    EXPECT_NEAR(bridges[0].to.x, 10, 1e-9);                    // beside the outer row
+    EXPECT_GT(bridges[0].thickness, bridges[1].thickness);     // the tail stands nearer
+    EXPECT_NEAR(bridges[1].from.x, 10 - 0.01, 1e-9);           // a hair into the wider one
+    EXPECT_NEAR(bridges[1].to.x, 20, 1e-9);
+    const std::vector<Mesh> shells = split_shells(walls_mesh(walls));
+    EXPECT_EQ(shells.size(), walls.size());
+    for (const Mesh& shell : shells) EXPECT_TRUE(is_closed_and_consistent(shell));
+}
