@@ -112,6 +112,11 @@ std::vector<CeilingWall> join_rows_into_slabs(const ModelQuery& q, std::vector<C
         std::vector<std::pair<double, double>> bridged;  // along it, where they stand
     };
     auto along = [](const OnLine& l, const Vec3& x) { return x.x * l.d.x + x.y * l.d.y; };
+    // Where two pieces run beside each other along `l`: {lo, hi} (hi <= lo where they do not).
+    auto beside_along = [&](const OnLine& l, const CeilingWall& wa, const CeilingWall& wb) {
+        return std::pair{std::max(std::min(along(l, wa.from), along(l, wa.to)), std::min(along(l, wb.from), along(l, wb.to))),
+                         std::min(std::max(along(l, wa.from), along(l, wa.to)), std::max(along(l, wb.from), along(l, wb.to)))};
+    };
     auto lines_of = [&](bool tails) {
         std::vector<Line> lines;
         for (std::size_t i = 0; i < walls.size(); ++i) {
@@ -157,8 +162,7 @@ std::vector<CeilingWall> join_rows_into_slabs(const ModelQuery& q, std::vector<C
                 const double bottom = std::max(wa.bottom, wb.bottom), top = std::min(wa.top, wb.top);
                 if (top - bottom < least_height) continue;
                 if (std::abs(wa.bottom - wb.bottom) > kMostFootStepOfLayer * p.layer_height) continue;
-                const double lo = std::max(std::min(along(l, wa.from), along(l, wa.to)), std::min(along(l, wb.from), along(l, wb.to)));
-                const double hi = std::min(std::max(along(l, wa.from), along(l, wa.to)), std::max(along(l, wb.from), along(l, wb.to)));
+                const auto [lo, hi] = beside_along(l, wa, wb);
                 // The stretch less what is taken.
                 std::vector<std::pair<double, double>> free{{lo, hi}};
                 for (const auto& [t0, t1] : taken) {
@@ -233,11 +237,8 @@ std::vector<CeilingWall> join_rows_into_slabs(const ModelQuery& q, std::vector<C
             double beside = 0;
             for (std::size_t a : t.pieces)
                 for (std::size_t b : n.pieces) {
-                    const OnLine& l = n.frame;
-                    beside += std::max(0.0, std::min(std::max(along(l, walls[a].from), along(l, walls[a].to)),
-                                                     std::max(along(l, walls[b].from), along(l, walls[b].to))) -
-                                                std::max(std::min(along(l, walls[a].from), along(l, walls[a].to)),
-                                                         std::min(along(l, walls[b].from), along(l, walls[b].to))));
+                    const auto [lo, hi] = beside_along(n.frame, walls[a], walls[b]);
+                    beside += std::max(0.0, hi - lo);
                 }
             if (beside > best_length) best = i, best_length = beside;
         }
