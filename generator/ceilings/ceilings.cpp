@@ -816,6 +816,10 @@ double most_pull(const Params& p) { return wall_reach(p) - tip_side_clearance(p)
 // island on every layer. At most kMostTails steps at each end; never closer to the next row than
 // two walls' thickness (a slot narrower than a wall, plan_rows).
 constexpr int kMostTails = 8;
+// An inner row goes on past its end only where a neighbour reaches on past it by more than this:
+// rows ending within it of each other end on a rim square to them (their ends waver by a station
+// or two along it), not on one crossing them.
+constexpr double kTailsPast = 4 * kStation;
 
 // A run made one flat piece: its top the lowest, its floor the highest, its thickness the
 // thickest of its stations; false where its floor is not flat (within half a layer).
@@ -830,20 +834,25 @@ bool flatten(Run& w, const Params& p) {
     return true;
 }
 
-// The tails of one outer row (`row`, at v_row; the next row at v_next): appended to `row`, each
-// with its `chain` (the run it goes on from's), and their jogs to `jogs`; `jogged` per run of
-// `row`: which of its ends (low, high) a jog holds.
+// The tails of one row (`row`, at v_row; the next row at v_next) at its `ends` (low, high):
+// appended to `row`, each with its `chain` (the run it goes on from's), and their jogs to `jogs`;
+// `jogged` per run of `row`: which of its ends a jog holds. An inner row's tails hold the samples
+// between its outer neighbour (at v_outer) and the next row; an outer row's (v_outer NaN) all
+// those on its side of the next row.
 void add_tails(const ModelQuery& q, const RowPlan& plan, const std::vector<Sample>& samples, const Params& p,
-               double overhang_nz, double v_row, double v_next, std::vector<Run>& row, std::vector<int>& chain,
-               std::vector<std::array<char, 2>>& jogged, std::vector<Run>& jogs, bool wide_ref) {
+               double overhang_nz, double v_row, double v_next, double v_outer, std::array<bool, 2> ends,
+               std::vector<Run>& row, std::vector<int>& chain, std::vector<std::array<char, 2>>& jogged,
+               std::vector<Run>& jogs, bool wide_ref) {
     const Frame& f = plan.f;
     const double inward = v_next > v_row ? 1 : -1;
-    // How far along the rows the region's samples go on the outer row's side of the next row.
+    // How far along the rows the region's samples go on the row's side of the next row.
     double need_lo = INFINITY, need_hi = -INFINITY;
     for (const Vec3& a : plan.members)
-        if ((f.v(a) - v_next) * inward < 0) need_lo = std::min(need_lo, f.u(a)), need_hi = std::max(need_hi, f.u(a));
+        if ((f.v(a) - v_next) * inward < 0 && !((f.v(a) - v_outer) * inward <= 0))
+            need_lo = std::min(need_lo, f.u(a)), need_hi = std::max(need_hi, f.u(a));
     if (row.empty() || !(need_lo <= need_hi)) return;
     for (const bool high_end : {false, true}) {
+        if (!ends[high_end ? 1 : 0]) continue;
         std::size_t at = 0;  // the run reaching furthest that way
         for (std::size_t i = 1; i < row.size(); ++i)
             if (high_end ? f.u(row[i].top.back()) > f.u(row[at].top.back()) : f.u(row[i].top.front()) < f.u(row[at].top.front()))
@@ -929,12 +938,33 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
         jogged[j].assign(by_row[j].size(), {0, 0});
     }
     std::vector<Run> jogs;
-    if (tails && by_row.size() >= 2)
+    if (tails && by_row.size() >= 2) {
+        // How far each row reaches along at its low and high end, before any tails.
+        std::vector<std::array<double, 2>> reach(by_row.size(), {INFINITY, -INFINITY});
+        for (std::size_t j = 0; j < by_row.size(); ++j)
+            for (const Run& r : by_row[j])
+                reach[j] = {std::min(reach[j][0], f.u(r.top.front())), std::max(reach[j][1], f.u(r.top.back()))};
         for (const std::size_t j : {std::size_t{0}, by_row.size() - 1}) {
             const std::size_t next = j == 0 ? 1 : j - 1;
-            add_tails(q, plan, samples, p, overhang_nz, row_v[j], row_v[next], by_row[j], chain[j], jogged[j], jogs,
-                      prefer_near != nullptr);
+            add_tails(q, plan, samples, p, overhang_nz, row_v[j], row_v[next], NAN, {true, true}, by_row[j], chain[j],
+                      jogged[j], jogs, prefer_near != nullptr);
         }
+        // An inner row's end where a rim crosses the rows (a delta wing's leading edge, a wedge's
+        // diagonal front): the rows end one by one along it, each past its outer neighbour's end
+        // and short of its inner one's, and the samples between it and the inner one past its end
+        // stayed with the tree. So it goes on stepped in towards the neighbour that reaches on
+        // (kTailsPast beyond it); not where both neighbours do (a notch, a hole's rim).
+        for (std::size_t j = 1; j + 1 < by_row.size(); ++j)
+            for (const int e : {0, 1}) {
+                auto further = [&](std::size_t k) {
+                    return e == 1 ? reach[k][1] > reach[j][1] + kTailsPast : reach[k][0] < reach[j][0] - kTailsPast;
+                };
+                if (!(reach[j][0] <= reach[j][1]) || further(j - 1) == further(j + 1)) continue;
+                const std::size_t next = further(j - 1) ? j - 1 : j + 1, outer = next == j - 1 ? j + 1 : j - 1;
+                add_tails(q, plan, samples, p, overhang_nz, row_v[j], row_v[next], row_v[outer], {e == 0, e == 1}, by_row[j],
+                          chain[j], jogged[j], jogs, prefer_near != nullptr);
+            }
+    }
     std::vector<std::vector<char>> joined(by_row.size());
     for (std::size_t j = 0; j < by_row.size(); ++j) joined[j].assign(by_row[j].size(), 0);
     std::size_t joins = 0;

@@ -24,8 +24,10 @@
 //               walls' reach apart (a slope's staircase is held at each piece's middle only), the
 //               layout leaving fewer kept; where the region narrows past an outer row's end (a
 //               tapering blade), also the outer row going on stepped in towards the next row
-//               (tails, each joined to where the row ended by a short jog: one line), kept where
-//               it carries more and is faster on both routes; each row is cut into walls where
+//               (tails, each joined to where the row ended by a short jog: one line), and an
+//               inner row the same where a rim crosses the rows and its inner neighbour reaches
+//               on past its end (a delta wing's leading edges), kept where they carry more and
+//               are faster on both routes; each row is cut into walls where
 //               the ceiling above it is an overhang of this region all across the wall's width
 //               plus tip_side_clearance (a wall beside it ends a wall); a row goes
 //               on under a hole through its ceiling up to kMostCrossed long (ceilings.cpp
@@ -96,7 +98,7 @@ struct CeilingWall {
     // .prusa.3mf leaves the bridges out.
     bool bridge = false;
     double row_thickness = 0;  // a bridge's: the thickness of the rows it lies between
-    bool tail = false;  // a piece of an outer row's tail, stepped in where the region narrows (ceilings.cpp,
+    bool tail = false;  // a piece of a row's tail, stepped in where the region narrows (ceilings.cpp,
                         // add_tails): it lies between two rows, so slabs leave it out
 };
 

@@ -141,4 +141,19 @@ inline Mesh tapered_blade() {
     return m;
 }
 
+// A delta wing: a flat plate 5 mm over the bed (z 5..6.6), 50 mm long, narrowing from 40 mm wide
+// at its root (x 0, on a 4 mm block) to 6 mm at its tip. Its two rims run diagonally across rows
+// along its length, which end one by one along them.
+inline Mesh delta_plate() {
+    std::vector<double> xs{-4}, ys;
+    for (int i = 0; i <= 50; ++i) xs.push_back(i);
+    for (int j = -20; j <= 20; ++j) ys.push_back(j);
+    CellGrid g(xs, ys, {0, 5, 6.6});
+    g.fill({-4, -20, 0}, {0, 20, 6.6});
+    g.fill({0, -20, 5}, {50, 20, 6.6});
+    Mesh m = g.mesh();
+    for (auto& v : m.vertices) v.y *= 1 - std::clamp(v.x, 0.0, 50.0) / 50 * 17.0 / 20;  // half-width 20 -> 3
+    return m;
+}
+
 }  // namespace cs::test
