@@ -845,7 +845,8 @@ void add_tails(const ModelQuery& q, const RowPlan& plan, const std::vector<Sampl
                std::vector<Run>& jogs, bool wide_ref) {
     const Frame& f = plan.f;
     const double inward = v_next > v_row ? 1 : -1;
-    // How far along the rows the region's samples go on the row's side of the next row.
+    // How far along the rows the region's samples go on the row's side of the next row (and,
+    // for an inner row, beyond its outer neighbour: a NaN v_outer compares false).
     double need_lo = INFINITY, need_hi = -INFINITY;
     for (const Vec3& a : plan.members)
         if ((f.v(a) - v_next) * inward < 0 && !((f.v(a) - v_outer) * inward <= 0))

@@ -967,14 +967,20 @@ std::vector<std::size_t> solids_from_above(const std::vector<CeilingWall>& walls
     return set;
 }
 
+// Each tail is one solid with a row it goes on from: the same island on every layer.
+void expect_tails_stand_with_rows(const std::vector<CeilingWall>& walls) {
+    const std::vector<std::size_t> solid = solids_from_above(walls);
+    for (std::size_t i = 0; i < walls.size(); ++i) {
+        if (!walls[i].tail) continue;
+        bool with_row = false;
+        for (std::size_t j = 0; j < walls.size(); ++j)
+            with_row |= solid[j] == solid[i] && !walls[j].tail && !walls[j].join;
+        EXPECT_TRUE(with_row) << "tail " << i << " stands alone";
+    }
+}
+
 }  // namespace
 
-// A tapered, twisted blade (test::tapered_blade): its outer rows, laid straight at its widest, run
-// off its edges where they turn in towards the tip. They go on stepped in (tails), each tail joined
-// to the row it goes on from by a short jog: the walls carry the samples along the edges to the
-// tip, and each tail is the same island as its row. Without tails (before 2026-12-06) the walls
-// carried 74 of the blade's 96 samples and left those along its edges towards the tip to the tree
-// (propeller's blades kept about 20 tips each); with them, 94.
 // The rows under a delta wing end one by one along its rims: each inner row goes on stepped in
 // towards the longer row beside it, so the rim between their ends is held too.
 TEST(Ceilings, AnInnerRowGoesOnSteppedInWhereARimCrossesTheRows) {
@@ -987,34 +993,25 @@ TEST(Ceilings, AnInnerRowGoesOnSteppedInWhereARimCrossesTheRows) {
     for (const CeilingWall& c : w.ceilings.walls)
         if (c.tail) ++tails, inner_tails += std::min(c.from.x, c.to.x) > 15;
     EXPECT_GE(inner_tails, 4u) << "of " << tails << " tails";
-    const std::vector<std::size_t> solid = solids_from_above(w.ceilings.walls);
-    for (std::size_t i = 0; i < w.ceilings.walls.size(); ++i) {
-        if (!w.ceilings.walls[i].tail) continue;
-        bool with_row = false;
-        for (std::size_t j = 0; j < w.ceilings.walls.size(); ++j)
-            with_row |= solid[j] == solid[i] && !w.ceilings.walls[j].tail && !w.ceilings.walls[j].join;
-        EXPECT_TRUE(with_row) << "tail " << i << " stands alone";
-    }
+    expect_tails_stand_with_rows(w.ceilings.walls);
     // Without the inner rows' tails the walls carry 172 of 216 samples; with them, 200.
     EXPECT_GE(w.ceilings.covered, 0.9 * w.samples.samples.size());
     expect_walls_hold_what_they_take(w, "delta plate");
 }
 
+// A tapered, twisted blade (test::tapered_blade): its outer rows, laid straight at its widest, run
+// off its edges where they turn in towards the tip. They go on stepped in (tails), each tail joined
+// to the row it goes on from by a short jog: the walls carry the samples along the edges to the
+// tip, and each tail is the same island as its row. Without tails (before 2026-12-06) the walls
+// carried 74 of the blade's 96 samples and left those along its edges towards the tip to the tree
+// (propeller's blades kept about 20 tips each); with them, 94.
 TEST(Ceilings, AnOuterRowGoesOnSteppedInWhereTheBladeNarrows) {
     const Walled w = walled(test::tapered_blade());
     ASSERT_FALSE(w.ceilings.walls.empty());
     std::size_t tails = 0;
     for (const CeilingWall& c : w.ceilings.walls) tails += c.tail;
     EXPECT_GT(tails, 0u);
-    // Each tail is one solid with a row it goes on from: the same island on every layer.
-    const std::vector<std::size_t> solid = solids_from_above(w.ceilings.walls);
-    for (std::size_t i = 0; i < w.ceilings.walls.size(); ++i) {
-        if (!w.ceilings.walls[i].tail) continue;
-        bool with_row = false;
-        for (std::size_t j = 0; j < w.ceilings.walls.size(); ++j)
-            with_row |= solid[j] == solid[i] && !w.ceilings.walls[j].tail && !w.ceilings.walls[j].join;
-        EXPECT_TRUE(with_row) << "tail " << i << " stands alone";
-    }
+    expect_tails_stand_with_rows(w.ceilings.walls);
     EXPECT_GE(w.ceilings.covered, 0.95 * w.samples.samples.size());
     expect_walls_hold_what_they_take(w, "tapered blade");
 }
