@@ -156,4 +156,20 @@ inline Mesh delta_plate() {
     return m;
 }
 
+// A triangular shelf: a flat plate 5 mm over the bed (z 5..6.6) standing out 18 mm from a 4 mm
+// block (y < 0), 36 mm wide at the block and 2 mm at its apex: its two rims run at 45 degrees to
+// rows along the block, which end on them a row's spacing shorter each (bench/validation's
+// wedge_ledge has such a shelf).
+inline Mesh triangle_shelf() {
+    std::vector<double> xs, ys{-4};
+    for (int i = -18; i <= 18; ++i) xs.push_back(i);
+    for (int j = 0; j <= 18; ++j) ys.push_back(j);
+    CellGrid g(xs, ys, {0, 5, 6.6});
+    g.fill({-18, -4, 0}, {18, 0, 6.6});
+    g.fill({-18, 0, 5}, {18, 18, 6.6});
+    Mesh m = g.mesh();
+    for (auto& v : m.vertices) v.x *= 1 - std::clamp(v.y, 0.0, 18.0) / 18 * 17.0 / 18;  // half-width 18 -> 1
+    return m;
+}
+
 }  // namespace cs::test
