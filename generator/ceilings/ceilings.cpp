@@ -625,7 +625,7 @@ std::optional<Run> join_at(const ModelQuery& q, const XyGrid<std::size_t>& regio
 // the first station where none fits or where its top rises more than half a layer over the first
 // station's; nothing where not even two stations are left (a slanted tail).
 std::optional<Run> level_run(const ModelQuery& q, const XyGrid<std::size_t>& region, const std::vector<Sample>& samples,
-                               const Vec3& from, const Vec3& to, const Params& p, double overhang_nz, bool wide_ref) {
+                             const Vec3& from, const Vec3& to, const Params& p, double overhang_nz, bool wide_ref) {
     const double length = horizontal_distance(from, to);
     if (length <= 0) return std::nullopt;
     const Vec3 side{(to.y - from.y) / length, -(to.x - from.x) / length, 0};
@@ -680,7 +680,7 @@ struct RegionWalls {
     double length = 0;        // of all walls, mm
     std::size_t pieces = 0;   // separate meanders (islands per layer)
     std::size_t turned = 0;   // joins placed at the other end than the meander's (prefer_near)
-    std::size_t tails = 0;    // the rows' tails and their jogs (add_tails, slanted_tails)
+    std::size_t tails = 0;    // the rows' tails (add_tails, slanted_tails)
     double height = 0;        // mean top height
 };
 
@@ -932,10 +932,10 @@ void add_tails(const ModelQuery& q, const RowPlan& plan, const std::vector<Sampl
 // kTailsPast, and the samples between the two ends stayed with the tree, a tip each and an island
 // on every layer (bench/validation/wedge_ledge kept about 110 tips so). So the row goes on from its
 // end straight towards the neighbour's end, along the rim, and stops with two walls' thickness of
-// air left to the neighbour (no slot narrower than a wall, plan_rows). It turns off the row by less than
-// a right angle, so a slicer prints row and tail as one line: a tail reaching the neighbour would
-// meet it at the rim's acute angle, and PrusaSlicer printed each such corner as an island of its
-// own. The tail starts half its thickness back inside the row (no face of one lies on the other's)
+// air left to the neighbour (no slot narrower than a wall, plan_rows). It turns off the row by
+// less than a right angle, so a slicer prints row and tail as one line: a tail reaching the
+// neighbour would meet it at the rim's acute angle, and PrusaSlicer printed each such corner as an
+// island of its own. The tail starts half its thickness back inside the row (no face of one lies on the other's)
 // and ends at the first station where no wall fits, or where its top rises more than half a layer
 // over the row's end: a tail rising with the ceiling off its row stands alone, an island of its
 // own, on the layers over its row's top (on delta_wing's sloping wing slanted tails so printed
