@@ -862,6 +862,16 @@ bool flatten(Run& w, const Params& p) {
     return true;
 }
 
+// Which of a row's runs (stations in increasing u) reaches furthest towards its high end (else
+// its low end): where the row ends on that side.
+std::size_t furthest_run(const std::vector<Run>& row, const Frame& f, bool high_end) {
+    std::size_t at = 0;
+    for (std::size_t i = 1; i < row.size(); ++i)
+        if (high_end ? f.u(row[i].top.back()) > f.u(row[at].top.back()) : f.u(row[i].top.front()) < f.u(row[at].top.front()))
+            at = i;
+    return at;
+}
+
 // The tails of one row (`row`, at v_row; the next row at v_next) at its `ends` (low, high):
 // appended to `row`, each with its `chain` (the run it goes on from's), and their jogs to `jogs`;
 // `jogged` per run of `row`: which of its ends a jog holds. An inner row's tails hold the samples
@@ -882,10 +892,7 @@ void add_tails(const ModelQuery& q, const RowPlan& plan, const std::vector<Sampl
     if (row.empty() || !(need_lo <= need_hi)) return;
     for (const bool high_end : {false, true}) {
         if (!ends[high_end ? 1 : 0]) continue;
-        std::size_t at = 0;  // the run reaching furthest that way
-        for (std::size_t i = 1; i < row.size(); ++i)
-            if (high_end ? f.u(row[i].top.back()) > f.u(row[at].top.back()) : f.u(row[i].top.front()) < f.u(row[at].top.front()))
-                at = i;
+        std::size_t at = furthest_run(row, f, high_end);
         for (int n = 0; n < kMostTails; ++n) {
             const Run& last = row[at];
             const double end = f.u(high_end ? last.top.back() : last.top.front());
@@ -947,27 +954,18 @@ std::vector<Run> slanted_tails(const ModelQuery& q, const RowPlan& plan, const s
                                const std::vector<std::vector<std::array<char, 2>>>& held, bool wide_ref) {
     const Frame& f = plan.f;
     std::vector<Run> out;
-    // The row's run reaching furthest at that end, and its end point.
-    auto end_of = [&](std::size_t j, bool high) {
-        std::size_t at = 0;
-        for (std::size_t i = 1; i < by_row[j].size(); ++i)
-            if (high ? f.u(by_row[j][i].top.back()) > f.u(by_row[j][at].top.back())
-                     : f.u(by_row[j][i].top.front()) < f.u(by_row[j][at].top.front()))
-                at = i;
-        return at;
-    };
     auto end_point = [&](const Run& r, bool high) { return high ? r.top.back() : r.top.front(); };
     for (std::size_t j = 0; j < by_row.size(); ++j) {
         if (by_row[j].empty()) continue;
         for (const bool high : {false, true}) {
-            const std::size_t a = end_of(j, high);
+            const std::size_t a = furthest_run(by_row[j], f, high);
             const Run& row = by_row[j][a];
             if (held[j][a][high ? 1 : 0]) continue;
             const Vec3 e = end_point(row, high);
             // The neighbour's end where it reaches on past this one.
             auto past = [&](std::size_t k) -> std::optional<Vec3> {
                 if (k >= by_row.size() || by_row[k].empty()) return std::nullopt;
-                const Vec3 ek = end_point(by_row[k][end_of(k, high)], high);
+                const Vec3 ek = end_point(by_row[k][furthest_run(by_row[k], f, high)], high);
                 if (high ? f.u(ek) > f.u(e) + kTailsPast : f.u(ek) < f.u(e) - kTailsPast) return ek;
                 return std::nullopt;
             };
@@ -1054,8 +1052,6 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
                           chain[j], jogged[j], jogs, prefer_near != nullptr);
             }
     }
-    std::vector<std::vector<char>> joined(by_row.size());
-    for (std::size_t j = 0; j < by_row.size(); ++j) joined[j].assign(by_row[j].size(), 0);
     // Which ends (low, high) of each run a join or a stepped tail's jog holds.
     std::vector<std::vector<std::array<char, 2>>> held = jogged;
     std::size_t joins = 0;
@@ -1109,7 +1105,6 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
                         end_at(by_row[j][a], end, f, high_end);
                         end_at(by_row[j + 1][b], end, f, high_end);
                         out.walls.push_back(*w);
-                        joined[j][a] = joined[j + 1][b] = 1;
                         held[j][a][high_end ? 1 : 0] = held[j + 1][b][high_end ? 1 : 0] = 1;
                         chains_joined.insert({j, chain[j][a], chain[j + 1][b]});
                         ++joins;
