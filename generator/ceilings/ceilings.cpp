@@ -1114,10 +1114,11 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
                     }
                 }
             }
+    // A slanted tail is a run of its own that goes on from its row's end: a line more, a join more.
+    std::size_t rows_kept = 0;
     if (tails == Tails::slanted && by_row.size() >= 2)
         for (Run& tail : slanted_tails(q, plan, samples, p, overhang_nz, by_row, held, prefer_near != nullptr))
-            out.walls.push_back(std::move(tail)), ++out.tails, ++joins;  // one line with its row
-    std::size_t rows_kept = 0;
+            out.walls.push_back(std::move(tail)), ++out.tails, ++rows_kept, ++joins;
     for (std::size_t j = 0; j < by_row.size(); ++j)
         for (std::size_t a = 0; a < by_row[j].size(); ++a) {
             // Strength: every piece is as thick as the strength rule asks for its height (station).

@@ -1048,3 +1048,22 @@ TEST(Ceilings, AnOuterRowGoesOnSteppedInWhereTheBladeNarrows) {
     EXPECT_GE(w.ceilings.covered, 0.95 * w.samples.samples.size());
     expect_walls_hold_what_they_take(w, "tapered blade");
 }
+
+// The price a region's walls are chosen by counts the islands a slicer prints on each layer as
+// walls_seconds counts them from the walls' own geometry: a slanted tail goes on from its row's end,
+// one line with it, so an island neither more nor fewer. Until 2026-12-07 each slanted tail took an
+// island off its region's price, and the triangle shelf's six rows, each with its tails, were priced
+// as one meander. The shelf's ceiling is flat, so each run is one flat piece and the two counts
+// agree; the tree (dear_tree) prices every sample the walls leave at a whole number of its islands.
+TEST(Ceilings, WallsArePricedByTheIslandsTheyPrint) {
+    const Walled w = walled(test::triangle_shelf());
+    ASSERT_FALSE(w.ceilings.walls.empty());
+    std::size_t tails = 0;
+    for (const CeilingWall& c : w.ceilings.walls) tails += c.tail;
+    ASSERT_GT(tails, 0u);
+    const double walls = walls_seconds(kPrusaRoute, w.ceilings.walls, w.p);
+    const double per_sample = tree_route_seconds(kPrusaRoute, dear_tree({Sample{}}).island_layers, 0, 0);
+    const double left = (w.ceilings.walls_prusa_s - walls) / per_sample;
+    EXPECT_NEAR(left, std::round(left), 0.01) << "priced " << w.ceilings.walls_prusa_s << " s, walls " << walls << " s";
+    EXPECT_GE(std::round(left), static_cast<double>(w.ceilings.rest.size()));
+}
