@@ -1,6 +1,7 @@
 // ceilings/: walls under ceilings low over the bed, and how `check` judges a wall's long top.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -967,6 +968,11 @@ std::vector<std::size_t> solids_from_above(const std::vector<CeilingWall>& walls
     return set;
 }
 
+// How many of the walls are pieces of a row's tails (stepped or slanted).
+std::size_t tails_in(const std::vector<CeilingWall>& walls) {
+    return static_cast<std::size_t>(std::count_if(walls.begin(), walls.end(), [](const CeilingWall& c) { return c.tail; }));
+}
+
 // Each tail is one solid with a row it goes on from: the same island on every layer.
 void expect_tails_stand_with_rows(const std::vector<CeilingWall>& walls) {
     const std::vector<std::size_t> solid = solids_from_above(walls);
@@ -1041,9 +1047,7 @@ TEST(Ceilings, ARowGoesOnAlongARimSlantedAcrossTheRows) {
 TEST(Ceilings, AnOuterRowGoesOnSteppedInWhereTheBladeNarrows) {
     const Walled w = walled(test::tapered_blade());
     ASSERT_FALSE(w.ceilings.walls.empty());
-    std::size_t tails = 0;
-    for (const CeilingWall& c : w.ceilings.walls) tails += c.tail;
-    EXPECT_GT(tails, 0u);
+    EXPECT_GT(tails_in(w.ceilings.walls), 0u);
     expect_tails_stand_with_rows(w.ceilings.walls);
     EXPECT_GE(w.ceilings.covered, 0.95 * w.samples.samples.size());
     expect_walls_hold_what_they_take(w, "tapered blade");
@@ -1051,16 +1055,14 @@ TEST(Ceilings, AnOuterRowGoesOnSteppedInWhereTheBladeNarrows) {
 
 // The price a region's walls are chosen by counts the islands a slicer prints on each layer as
 // walls_seconds counts them from the walls' own geometry: a slanted tail goes on from its row's end,
-// one line with it, so an island neither more nor fewer. Until 2026-12-07 each slanted tail took an
+// one line with it, so an island neither more nor fewer. Until 2026-12-06 each slanted tail took an
 // island off its region's price, and the triangle shelf's six rows, each with its tails, were priced
 // as one meander. The shelf's ceiling is flat, so each run is one flat piece and the two counts
 // agree; the tree (dear_tree) prices every sample the walls leave at a whole number of its islands.
 TEST(Ceilings, WallsArePricedByTheIslandsTheyPrint) {
     const Walled w = walled(test::triangle_shelf());
     ASSERT_FALSE(w.ceilings.walls.empty());
-    std::size_t tails = 0;
-    for (const CeilingWall& c : w.ceilings.walls) tails += c.tail;
-    ASSERT_GT(tails, 0u);
+    ASSERT_GT(tails_in(w.ceilings.walls), 0u);
     const double walls = walls_seconds(kPrusaRoute, w.ceilings.walls, w.p);
     const double per_sample = tree_route_seconds(kPrusaRoute, dear_tree({Sample{}}).island_layers, 0, 0);
     const double left = (w.ceilings.walls_prusa_s - walls) / per_sample;
