@@ -942,11 +942,12 @@ void add_tails(const ModelQuery& q, const RowPlan& plan, const std::vector<Sampl
 // air left to the neighbour (no slot narrower than a wall, plan_rows). It turns off the row by
 // less than a right angle, so a slicer prints row and tail as one line: a tail reaching the
 // neighbour would meet it at the rim's acute angle, and PrusaSlicer printed each such corner as an
-// island of its own. The tail starts half its thickness back inside the row (no face of one lies on the other's)
-// and ends at the first station where no wall fits, or where its top rises more than half a layer
-// over the row's end: a tail rising with the ceiling off its row stands alone, an island of its
-// own, on the layers over its row's top (on delta_wing's sloping wing slanted tails so printed
-// slower on both slicers, and on spot in its auto pose slower on PrusaSlicer, 13.0 -> 13.3 min).
+// island of its own. The tail starts half its thickness back inside the row (no face of one lies
+// on the other's) and ends at the first station where no wall fits, or where its top rises more
+// than half a layer over the row's end: a tail rising with the ceiling off its row stands alone,
+// an island of its own, on the layers over its row's top (on delta_wing's sloping wing slanted
+// tails so printed slower on both slicers, and on spot in its auto pose slower on PrusaSlicer,
+// 13.0 -> 13.3 min).
 // Not where both neighbours reach on (a notch, a hole's rim), nor at ends a join or a stepped tail
 // holds (`held`, per run: low, high).
 std::vector<Run> slanted_tails(const ModelQuery& q, const RowPlan& plan, const std::vector<Sample>& samples, const Params& p,
@@ -1114,11 +1115,12 @@ RegionWalls region_walls(const ModelQuery& q, const RowPlan& plan, const std::ve
                     }
                 }
             }
-    // A slanted tail is a run of its own that goes on from its row's end: a line more, a join more.
-    std::size_t rows_kept = 0;
+    // A slanted tail goes on from its row's end, one line with it: an island neither more nor fewer,
+    // so it counts as neither a row nor a join.
     if (tails == Tails::slanted && by_row.size() >= 2)
         for (Run& tail : slanted_tails(q, plan, samples, p, overhang_nz, by_row, held, prefer_near != nullptr))
-            out.walls.push_back(std::move(tail)), ++out.tails, ++rows_kept, ++joins;
+            out.walls.push_back(std::move(tail)), ++out.tails;
+    std::size_t rows_kept = 0;
     for (std::size_t j = 0; j < by_row.size(); ++j)
         for (std::size_t a = 0; a < by_row[j].size(); ++a) {
             // Strength: every piece is as thick as the strength rule asks for its height (station).
