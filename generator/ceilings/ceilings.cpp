@@ -705,8 +705,9 @@ double walls_route_seconds(const SlicerRoute& r, const RegionWalls& w, const Par
 // short pieces, each holding the ceiling at its middle only). Level is judged between lattice
 // neighbours: along x or y, whichever changes height less, where they differ by more than half a
 // layer over a sampling distance on average (a flat piece ends where its ceiling changes by half
-// a layer); else along the region's longer side.
-bool rows_along_x(const Region& r, const XyGrid<std::size_t>& grid, const std::vector<Sample>& samples, const Params& p) {
+// a layer); nothing where the ceiling is level both ways (flat: rows along the region's longer
+// side, longer_along_x, and across it).
+std::optional<bool> level_along_x(const Region& r, const XyGrid<std::size_t>& grid, const std::vector<Sample>& samples, const Params& p) {
     const double sd = p.sampling_distance;
     double change[2] = {0, 0};
     std::size_t pairs[2] = {0, 0};
@@ -723,17 +724,20 @@ bool rows_along_x(const Region& r, const XyGrid<std::size_t>& grid, const std::v
         const double along_x = change[0] / pairs[0], along_y = change[1] / pairs[1];
         if (std::abs(along_x - along_y) > 0.5 * p.layer_height) return along_x < along_y;
     }
-    return r.box.max.x - r.box.min.x >= r.box.max.y - r.box.min.y;
+    return std::nullopt;
 }
+
+// Rows along a flat region's longer side: fewer, longer rows.
+bool longer_along_x(const Region& r) { return r.box.max.x - r.box.min.x >= r.box.max.y - r.box.min.y; }
 
 // The direction between x and y along which the region's ceiling changes height least (a bore or
 // tunnel whose axis runs diagonally, a sloped roof whose contour lines do, a twisted blade's
 // underside along its length), where rows along it would be level and rows along `axis` (the
-// axis rows_along_x chose) would not: the slope at each sample is the slope of the face of the
-// ceiling right above it (Region::slopes, as free_regions asked them), and the direction is the one of least mean
+// axis level_along_x chose, or the longer side) would not: the slope at each sample is the slope
+// of the face of the ceiling right above it (Region::slopes, as free_regions asked them), and the direction is the one of least mean
 // squared slope over the region's samples (the smaller principal direction of the slopes). Given
 // where it is more than kLevelTurn from the axis, and a sampling distance along the axis changes
-// height by more than half a layer more than along it (rows_along_x's threshold) and by more than
+// height by more than half a layer more than along it (level_along_x's threshold) and by more than
 // kLevelContrast times as much: the ceiling is level along it, not merely less curved (a curved
 // organic underside has no level direction; rows there stay along an axis).
 constexpr double kLevelTurn = 5.0;  // degrees
@@ -751,7 +755,7 @@ std::optional<double> level_direction(const Region& r, const Params& p, const Fr
     return level;
 }
 
-// Where a region's rows run (rows_along_x), and its outer rows, which do not depend on the span:
+// Where a region's rows run (level_along_x), and its outer rows, which do not depend on the span:
 // as far out as walls stand along them (as long as a row just inside the outer samples would):
 // where the ceiling goes on past the outer samples (a bore's or tunnel's sides beyond the last
 // lattice row) the walls then reach what those samples cover. Where the outer samples lie on the
@@ -1734,7 +1738,7 @@ Ceilings support_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
 Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
                           const PiecesRule& finish, const PiecesTreeCounter& tree_count, const std::vector<Box3>& blockers,
                           double most_left, const TipAt& tip_at, const std::vector<char>& stay,
-                          const RivalSaving& rival) {
+                          const RivalSaving& rival, bool rows_across) {
     Ceilings out;
     if (!ceilings_laid_out(p)) {
         out.rest = samples, out.stay = stay;
@@ -1777,14 +1781,18 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         // staircase of short pieces), keeping the layout that leaves fewer (the first of equals).
         XyGrid<std::size_t> grid(p.sampling_distance);
         for (std::size_t i : r.samples) grid.insert(samples[i].p, i);
-        // Rows along x or y (rows_along_x); where the ceiling is level along a direction between
+        // Rows along x or y (level_along_x); where the ceiling is level along a direction between
         // them (level_direction), also along that, keeping the rows that leave fewer samples (a
         // region whose rims run along the axes, a tilted rectangle, leaves triangles at the rows'
         // ends that no row reaches and rows no join fits between), of equals the fewer pieces
         // (rows along x or y cross a blade's underside as a staircase).
-        const Frame axis = Frame::along_axis(rows_along_x(r, grid, samples, p));
+        const std::optional<bool> level_x = level_along_x(r, grid, samples, p);
+        const bool axis_x = level_x.value_or(longer_along_x(r));
+        const Frame axis = Frame::along_axis(axis_x);
         std::vector<RowPlan> plans;
         if (auto d = level_direction(r, p, axis)) plans.push_back(plan_rows(q, r, grid, Frame::along(*d), samples, p, overhang_nz));
+        std::vector<RowPlan> across;
+        if (!level_x && rows_across) across.push_back(plan_rows(q, r, grid, Frame::along_axis(!axis_x), samples, p, overhang_nz));
         plans.insert(plans.begin(), plan_rows(q, r, std::move(grid), axis, samples, p, overhang_nz));
         auto lay = [&](const RowPlan& plan, double span, const std::vector<Vec3>* prefer_near, bool fewer_rows = false,
                        Tails tails = Tails::none) -> std::optional<Layout> {
@@ -1814,7 +1822,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         };
         // The layout leaving fewest samples over the plans and spans (with `tails`: only layouts
         // where rows get such tails), and its plan.
-        auto choose = [&](Tails tails) {
+        auto choose = [&](const std::vector<RowPlan>& plans, Tails tails) {
             std::optional<Layout> best;
             const RowPlan* chosen = &plans.front();
             for (const RowPlan& plan : plans) {
@@ -1830,13 +1838,8 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
             }
             return std::pair{std::move(best), chosen};
         };
-        auto [best, chosen] = choose(Tails::none);
-        if (!best) continue;
         std::vector<Sample> own;
         for (std::size_t i : r.samples) own.push_back(samples[i]);
-        // Pricing grows the region's tree twice (for all its samples, and for those the walls
-        // leave): the stage's cost. Walls that leave a tree under most of the region only add to it.
-        if (best->left.size() > most_left * own.size()) continue;
         // The samples beside the region go to the tree either way, and walls split it from them:
         // the region is priced with them on both sides. Priced alone, walls under the ridge along
         // a bore's crown (tests/data/ceilings/bore_ridge.scad) beat the region's own tree and left
@@ -1846,8 +1849,15 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
             for (std::size_t i : r.beside) v.push_back(samples[i]);
             return v;
         };
-        const TreeCount t = tree_count(and_beside(own), {});
-        const double tree_cura = tree_s(kCuraRoute, t), tree_prusa = tree_s(kPrusaRoute, t);
+        // The region's own tree on both routes, grown once, when a layout is first priced.
+        std::optional<std::pair<double, double>> tree_price;
+        auto region_tree = [&] {
+            if (!tree_price) {
+                const TreeCount t = tree_count(and_beside(own), {});
+                tree_price = std::pair{tree_s(kCuraRoute, t), tree_s(kPrusaRoute, t)};
+            }
+            return *tree_price;
+        };
         // A layout's seconds on both routes: its walls, and the tree for the samples they leave.
         // Walls that alone cost more than the tree lose whatever the rest costs: its tree is not grown.
         // On the Cura route the walls are priced as the slabs the pipeline makes of them
@@ -1855,6 +1865,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         // underside kept trees that both slicers printed slower (bench/results/validation.md).
         // (PrusaSlicer's first: the slabs are laid out only for walls it prices below the tree.)
         auto price = [&](const Layout& l) -> std::optional<std::pair<double, double>> {
+            const auto [tree_cura, tree_prusa] = region_tree();
             const double prusa = walls_route_seconds(kPrusaRoute, l.w, p);
             if (!(prusa < tree_prusa)) return std::nullopt;
             const double cura = walls_route_seconds(kCuraRoute, l.w, p) - slabs_saving(q, l.pieces, p);
@@ -1862,7 +1873,6 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
             const TreeCount rest = tree_count(and_beside(l.left), l.pieces);
             return std::pair{cura + tree_s(kCuraRoute, rest), prusa + tree_s(kPrusaRoute, rest)};
         };
-        auto cost = price(*best);
         // Where the meander leaves samples at the rows' open ends (a rim, a narrow strip beside
         // the region), its joins at the ends near them; a row fewer, the span apart (the outer rows
         // pulled in from the outer samples) where it carries as much: each kept where it is faster
@@ -1880,30 +1890,56 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
                 if (auto c = price(*fewer); c && (!cost || (c->first < cost->first && c->second < cost->second)))
                     best = std::move(fewer), cost = c;
         };
-        std::vector<Vec3> near_left;
-        refine(best, cost, *chosen, near_left, Tails::none);
-        // Rows with tails where the region narrows past their ends, stepped and then slanted: kept
-        // where they carry more than the layout without and are faster on both routes than the
-        // best so far (under stanford_bunny's belly stepped tails carried one sample more and the
-        // region's walls lost to its tree on the Cura route; given to every layout, slanted tails
-        // took delta_wing's stepped ones' place, and both slicers printed it slower). Stepped tails
-        // are laid out over the plans and spans and refined as the layout without; slanted ones on
-        // that layout's plan and span alone: laid out like the stepped ones they cost spot 6 % more
-        // CPU and changed no output of the validation set or the shared models.
-        const std::size_t untailed_left = best->left.size();
-        const double untailed_span = best->span;
-        for (const Tails kind : {Tails::stepped, Tails::slanted}) {
-            if (untailed_left == 0) break;
-            const bool stepped = kind == Tails::stepped;
-            auto [tailed, tailed_plan] = stepped ? choose(kind) : std::pair{lay(*chosen, untailed_span, nullptr, false, kind), chosen};
-            if (!tailed || tailed->left.size() >= untailed_left) continue;
-            auto tailed_cost = price(*tailed);
-            std::vector<Vec3> near_left_tailed;
-            if (stepped) refine(tailed, tailed_cost, *tailed_plan, near_left_tailed, kind);
-            if (tailed_cost && (!cost || (tailed_cost->first < cost->first && tailed_cost->second < cost->second)))
-                best = std::move(tailed), cost = tailed_cost;
-        }
-        if (!cost) continue;
+        // The layout over `plans`, refined and with tails where that is faster, and its price;
+        // nothing where its walls alone cost more than the region's tree.
+        auto lay_out = [&](const std::vector<RowPlan>& plans) -> std::optional<std::pair<Layout, std::pair<double, double>>> {
+            auto [best, chosen] = choose(plans, Tails::none);
+            if (!best) return std::nullopt;
+            // Pricing grows the region's tree twice (for all its samples, and for those the walls
+            // leave): the stage's cost. Walls that leave a tree under most of the region only add to it.
+            if (best->left.size() > most_left * own.size()) return std::nullopt;
+            auto cost = price(*best);
+            std::vector<Vec3> near_left;
+            refine(best, cost, *chosen, near_left, Tails::none);
+            // Rows with tails where the region narrows past their ends, stepped and then slanted: kept
+            // where they carry more than the layout without and are faster on both routes than the
+            // best so far (under stanford_bunny's belly stepped tails carried one sample more and the
+            // region's walls lost to its tree on the Cura route; given to every layout, slanted tails
+            // took delta_wing's stepped ones' place, and both slicers printed it slower). Stepped tails
+            // are laid out over the plans and spans and refined as the layout without; slanted ones on
+            // that layout's plan and span alone: laid out like the stepped ones they cost spot 6 % more
+            // CPU and changed no output of the validation set or the shared models.
+            const std::size_t untailed_left = best->left.size();
+            const double untailed_span = best->span;
+            for (const Tails kind : {Tails::stepped, Tails::slanted}) {
+                if (untailed_left == 0) break;
+                const bool stepped = kind == Tails::stepped;
+                auto [tailed, tailed_plan] =
+                    stepped ? choose(plans, kind) : std::pair{lay(*chosen, untailed_span, nullptr, false, kind), chosen};
+                if (!tailed || tailed->left.size() >= untailed_left) continue;
+                auto tailed_cost = price(*tailed);
+                std::vector<Vec3> near_left_tailed;
+                if (stepped) refine(tailed, tailed_cost, *tailed_plan, near_left_tailed, kind);
+                if (tailed_cost && (!cost || (tailed_cost->first < cost->first && tailed_cost->second < cost->second)))
+                    best = std::move(tailed), cost = tailed_cost;
+            }
+            if (!cost) return std::nullopt;
+            return std::pair{std::move(*best), *cost};
+        };
+        auto found = lay_out(plans);
+        // A flat ceiling (level both ways), `rows_across`: also rows across its longer side, kept
+        // where they are faster on both routes. Rows that end on a straight rim (a shelf's wall)
+        // all join there; along the longer side their ends may all lie on slanted rims, where no
+        // join fits (wedge_ledge's triangular shelf: its hybrid, Cura 12.7 -> 10.9 min, PrusaSlicer
+        // 12.1 -> 9.7 min).
+        if (!across.empty())
+            if (auto turned = lay_out(across);
+                turned && (!found || (turned->second.first < found->second.first && turned->second.second < found->second.second)))
+                found = std::move(turned);
+        if (!found) continue;
+        std::optional<Layout> best = std::move(found->first);
+        const std::optional<std::pair<double, double>> cost = found->second;
+        const auto [tree_cura, tree_prusa] = region_tree();
         // Either slicer may print it: walls only where both print them faster.
         bool taken = cost->first < tree_cura && cost->second < tree_prusa;
         // Asked only of walls that beat the tree, and not by much (kRivalFromShare): the rival lays

@@ -16,7 +16,10 @@
 //     rows      at most ceiling_span apart (no walls where that is more than twice the walls'
 //               reach and a wall: nothing between two rows would be carried), where the ceiling is level (along x or y, whichever
 //               changes height less, so a sloping or round ceiling gets long flat pieces; else
-//               along the longer side; where the faces over the samples are level along a
+//               along the longer side (the hybrid's also across it, kept where faster on both
+//               routes: a shelf off a wall with slanted rims, whose rows out from the wall all
+//               end on it, where joins fit; along the wall no joins fit at the rims, and each
+//               row is a line of its own); where the faces over the samples are level along a
 //               direction between x and y, a diagonal bore or a twisted blade, rows along that
 //               too, kept where they leave fewer samples); the outer rows as far out as walls stand along them (a
 //               bore's or tunnel's ceiling goes on past its outer samples), else just inside the
@@ -157,12 +160,16 @@ Ceilings support_ceilings(const ModelQuery& model, const std::vector<Sample>& sa
 // tree for some samples, with a tip under the foot of each of `pieces` where they stand on the
 // tree; called with no pieces for the region's own tree). Where the pieces stand on the tree
 // (p.hybrid_height > 0), the regions' choices are then weighed in the whole (hybrid.hpp, choice).
+// `rows_across`: a flat region also gets rows across its longer side, kept where faster on both
+// routes (the hybrid's, support_hybrid; not the walls': rows across under stanford_bunny's belly,
+// priced faster on both routes, printed 33 s slower on PrusaSlicer, and pipe_tee gained nothing).
 using PiecesRule = std::function<std::vector<CeilingWall>(std::vector<CeilingWall>)>;
 using PiecesTreeCounter = std::function<TreeCount(const std::vector<Sample>&, const std::vector<CeilingWall>&)>;
 Ceilings lay_out_ceilings(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
                           const PiecesRule& finish, const PiecesTreeCounter& tree_count,
                           const std::vector<Box3>& support_blockers, double most_left, const TipAt& tip_at = {},
-                          const std::vector<char>& stay = {}, const RivalSaving& rival = {});
+                          const std::vector<char>& stay = {}, const RivalSaving& rival = {},
+                          bool rows_across = false);
 
 // What `pieces` carry of `samples` (as lay_out_ceilings took them, `stay` per sample; a sample
 // that stays is never carried), judged as lay_out_ceilings judges it: `walls` the pieces, `rest`

@@ -81,7 +81,7 @@ Ceilings without_feet(const ModelQuery& q, const std::vector<Sample>& samples, c
 
 Ceilings support_hybrid(const ModelQuery& q, const std::vector<Sample>& samples, const Params& p,
                         const FeetTreeCounter& tree_count, const std::vector<Box3>& blockers, const TipAt& tip_at,
-                        const std::vector<char>& stay) {
+                        const std::vector<char>& stay, bool rows_across) {
     if (p.hybrid_height <= 0) {
         Ceilings none;
         none.rest = samples, none.stay = stay;
@@ -92,7 +92,7 @@ Ceilings support_hybrid(const ModelQuery& q, const std::vector<Sample>& samples,
         [&](const std::vector<Sample>& s, const std::vector<CeilingWall>& pieces) {
             return s.empty() && pieces.empty() ? TreeCount{} : tree_count(s, feet_of(pieces));
         },
-        blockers, kMostLeftToPrice, tip_at, stay);
+        blockers, kMostLeftToPrice, tip_at, stay, {}, rows_across);
     out.feet = feet_of(out.walls);
     return out;
 }

@@ -46,10 +46,13 @@ namespace cs {
 using FeetTreeCounter = std::function<TreeCount(const std::vector<Sample>&, const std::vector<Vec3>& feet)>;
 
 // The hybrid on `samples` (those the walls left), none entering `support_blockers` (the user's,
-// and the walls' own boxes). Nothing when p.hybrid_height is 0.
+// and the walls' own boxes). Nothing when p.hybrid_height is 0. `rows_across` as for
+// lay_out_ceilings; off where the hybrid is priced as the walls' rival (pipeline): priced alone,
+// rows across enclosure_lid's ears made the hybrid look cheaper than the walls there on both
+// routes, and the whole (the tree under its feet) printed slower (PrusaSlicer +0.7 min).
 Ceilings support_hybrid(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
                         const FeetTreeCounter& tree_count, const std::vector<Box3>& support_blockers = {},
-                        const TipAt& tip_at = {}, const std::vector<char>& stay = {});
+                        const TipAt& tip_at = {}, const std::vector<char>& stay = {}, bool rows_across = true);
 
 // Under a point `x` of a ceiling: the foot of a hybrid wall, hybrid_height and a gap below it,
 // where the model (or the bed) below leaves room under the foot for a tip and a strut to leave

@@ -699,7 +699,8 @@ Result run_job(const Job& job, const std::function<void(const std::string&)>& pr
             hybrid_saving = [&](const std::vector<Sample>& s) {
                 if (!std::all_of(s.begin(), s.end(), [&](const Sample& x) { return hybrid_floor(*query, x.p, p).has_value(); }))
                     return std::pair{0.0, 0.0};
-                const Ceilings h = support_hybrid(*query, s, p, count, blockers, tip_at, {});
+                // Rows along the longer side only, priced as the walls' rival (support_hybrid).
+                const Ceilings h = support_hybrid(*query, s, p, count, blockers, tip_at, {}, false);
                 return std::pair{h.tree_cura_s - h.walls_cura_s, h.tree_prusa_s - h.walls_prusa_s};
             };
         walls_only = support_ceilings(*query, r.samples.samples, p,

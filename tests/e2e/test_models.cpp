@@ -65,7 +65,7 @@ Generated generate(const std::string& input, double scale, const std::string& ou
 // hanging keel no tip fits under; repair now unfolds it, mesh/unfold_caps.hpp.) With
 // --buildplate-only a dead end sends its leaves down again, merging only among themselves, then
 // one by one, so the dropped branches counted there are single leaves that found no way to the
-// bed (menger: 56 of 2021 samples).
+// bed (menger: 50 of 2021 samples; 56 before the hybrid took rows across flat crowns, 2026-12-06).
 struct KnownShortfall {
     std::size_t fused = 0, penetrating = 0, dropped_samples = 0, dropped_branches = 0, uncovered = 0;
 };
@@ -80,7 +80,7 @@ KnownShortfall known_shortfall(const std::string& file, bool buildplate_only) {
         {"spot.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
         {"fandisk.stl", {{0, 0, 1, 0, 0}, {0, 0, 1, 0, 0}}},
         {"rocker_arm.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
-        {"menger_sponge3.stl", {{0, 0, 0, 0, 0}, {0, 0, 56, 56, 0}}},
+        {"menger_sponge3.stl", {{0, 0, 0, 0, 0}, {0, 0, 50, 50, 0}}},
         {"armadillo.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
         {"beast.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},
         {"stanford_bunny.stl", {{0, 0, 0, 0, 0}, {0, 0, 0, 0, 0}}},

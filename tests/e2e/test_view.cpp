@@ -141,10 +141,13 @@ TEST(ViewFolder, FindsTheOneScadOfAnOutputFolderOrSaysWhatToGive) {
 
 // The page's check judges a folder as `clever-support check FOLDER` does: after omitting a strut
 // and regrowing, the overhang the omitted tips held is left out on purpose and both pass; with
-// the omission undone in the file only, both fail on that overhang.
+// the omission undone in the file only, both fail on that overhang. The strut is one whose tips
+// hold the print itself (22 since 2026-12-06, when the hybrid under the arches' flat crowns took
+// rows across them and the tree was renumbered; 102 before): omitting a strut under a hybrid
+// piece's foot leaves the piece resting on nothing, which `check` fails (known, not yet fixed).
 TEST(ViewCheck, JudgesTheFolderAsCheckDoesWithTheUsersOmissions) {
     Arches a;
-    std::string t = a.edit(a.text, {{"op", "toggle_strut"}, {"strut", 102}});
+    std::string t = a.edit(a.text, {{"op", "toggle_strut"}, {"strut", 22}});
     std::ofstream(a.scad, std::ios::binary) << t;
     auto regrow = run(quote(cli()) + " regrow -q " + quote(a.scad));
     ASSERT_EQ(regrow.code, 0) << regrow.out;
@@ -155,7 +158,7 @@ TEST(ViewCheck, JudgesTheFolderAsCheckDoesWithTheUsersOmissions) {
     EXPECT_GT(c["left_out_area_mm2"].get<double>(), 0) << c["summary"];
     EXPECT_NE(c["summary"].get<std::string>().find("left out on purpose by the user's edit"), std::string::npos);
     EXPECT_EQ(run(quote(cli()) + " check " + quote(f.folder)).code, 0);
-    const std::string undone = a.edit(t, {{"op", "toggle_strut"}, {"strut", 102}});
+    const std::string undone = a.edit(t, {{"op", "toggle_strut"}, {"strut", 22}});
     std::ofstream(a.scad, std::ios::binary) << undone;
     c = view_check(f, undone);
     EXPECT_EQ(c["coverage_ok"], false) << c["summary"];

@@ -296,6 +296,26 @@ TEST(Hybrid, WallsGiveWayOnlyWhereTheHybridIsCheaperOnBothRoutes) {
     }
 }
 
+// A flat shelf high over the bed off a wall, its rims slanted (bench/validation's wedge_ledge: a
+// triangular shelf 12 mm up, 40 mm along the wall and 20 mm out): rows along the wall end on the
+// slanted rims, where no join fits, and each is a line of its own on every layer; rows out from the
+// wall all end on it, where the joins fit. Priced by the time model, the hybrid takes the rows out
+// from the wall there. Laid along the longer side only (before 2026-12-06), the shelf kept its tree:
+// Cura 12.7 -> 10.9 min and PrusaSlicer 12.1 -> 9.7 min with the rows across (bench/handoff.py, same run).
+TEST(Hybrid, AShelfWithSlantedRimsGetsRowsOutFromItsWall) {
+    Job job;
+    job.input = test::source_dir() + "/bench/validation/wedge_ledge.stl";
+    job.orient = "keep";
+    const Result r = run_job(job);
+    std::size_t out = 0, along = 0;
+    for (const CeilingWall& w : r.supports.walls) {
+        if (w.join || w.tail || w.bridge || w.top < 10) continue;  // the shelf's rows
+        (std::abs(w.to.y - w.from.y) > std::abs(w.to.x - w.from.x) ? out : along) += 1;
+    }
+    EXPECT_GE(out, 6u);
+    EXPECT_EQ(along, 0u);
+}
+
 namespace {
 
 // high_deck with an opening through it, `wide` mm along x and 2 mm across (y -1..1), between
