@@ -1700,6 +1700,13 @@ void drop_idle_stubs(const ModelQuery& q, JudgedSurface& surface, const std::vec
     }
 }
 
+// Seconds on the two routes: the Cura support mesh's, then PrusaSlicer's from our 3MF.
+using RouteSeconds = std::pair<double, double>;
+
+// Is `a` faster than `b` on both routes? Either slicer may print what is chosen, so a structure
+// takes another's place only where both print it faster.
+bool faster_on_both(const RouteSeconds& a, const RouteSeconds& b) { return a.first < b.first && a.second < b.second; }
+
 // Seconds the slabs the pipeline makes of these pieces (join_rows_into_slabs) save on the Cura
 // route, against the pieces alone: each slab's outline in place of its rows' loops.
 double slabs_saving(const ModelQuery& q, const std::vector<CeilingWall>& pieces, const Params& p) {
@@ -1853,7 +1860,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
             return v;
         };
         // The region's own tree on both routes, grown once, when a layout is first priced.
-        std::optional<std::pair<double, double>> tree_price;
+        std::optional<RouteSeconds> tree_price;
         auto region_tree = [&] {
             if (!tree_price) {
                 const TreeCount t = tree_count(and_beside(own), {});
@@ -1867,7 +1874,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         // (ceilings/slabs.hpp): priced as loops, the blades of propeller and the pipe_tee's
         // underside kept trees that both slicers printed slower (bench/results/validation.md).
         // (PrusaSlicer's first: the slabs are laid out only for walls it prices below the tree.)
-        auto price = [&](const Layout& l) -> std::optional<std::pair<double, double>> {
+        auto price = [&](const Layout& l) -> std::optional<RouteSeconds> {
             const auto [tree_cura, tree_prusa] = region_tree();
             const double prusa = walls_route_seconds(kPrusaRoute, l.w, p);
             if (!(prusa < tree_prusa)) return std::nullopt;
@@ -1880,22 +1887,22 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         // the region), its joins at the ends near them; a row fewer, the span apart (the outer rows
         // pulled in from the outer samples) where it carries as much: each kept where it is faster
         // on both routes. `near_left` holds the samples a layout's joins were turned to.
-        auto refine = [&](std::optional<Layout>& best, std::optional<std::pair<double, double>>& cost, const RowPlan& chosen,
+        auto refine = [&](std::optional<Layout>& best, std::optional<RouteSeconds>& cost, const RowPlan& chosen,
                           std::vector<Vec3>& near_left, Tails tails) {
             if (!best->left.empty()) {
                 for (const Sample& x : best->left) near_left.push_back(x.p);
                 auto turned = lay(chosen, best->span, &near_left, false, tails);
                 if (turned && turned->left.size() < best->left.size())
-                    if (auto c = price(*turned); c && (!cost || (c->first < cost->first && c->second < cost->second)))
+                    if (auto c = price(*turned); c && (!cost || faster_on_both(*c, *cost)))
                         best = std::move(turned), cost = c;
             }
             if (auto fewer = lay(chosen, best->span, nullptr, true, tails); fewer && fewer->left.size() <= best->left.size())
-                if (auto c = price(*fewer); c && (!cost || (c->first < cost->first && c->second < cost->second)))
+                if (auto c = price(*fewer); c && (!cost || faster_on_both(*c, *cost)))
                     best = std::move(fewer), cost = c;
         };
         // The layout over `plans`, refined and with tails where that is faster, and its price;
         // nothing where its walls alone cost more than the region's tree.
-        auto lay_out = [&](const std::vector<RowPlan>& plans) -> std::optional<std::pair<Layout, std::pair<double, double>>> {
+        auto lay_out = [&](const std::vector<RowPlan>& plans) -> std::optional<std::pair<Layout, RouteSeconds>> {
             auto [best, chosen] = choose(plans, Tails::none);
             if (!best) return std::nullopt;
             // Pricing grows the region's tree twice (for all its samples, and for those the walls
@@ -1923,7 +1930,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
                 auto tailed_cost = price(*tailed);
                 std::vector<Vec3> near_left_tailed;
                 if (stepped) refine(tailed, tailed_cost, *tailed_plan, near_left_tailed, kind);
-                if (tailed_cost && (!cost || (tailed_cost->first < cost->first && tailed_cost->second < cost->second)))
+                if (tailed_cost && (!cost || faster_on_both(*tailed_cost, *cost)))
                     best = std::move(tailed), cost = tailed_cost;
             }
             if (!cost) return std::nullopt;
@@ -1936,31 +1943,29 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         // join fits (wedge_ledge's triangular shelf: its hybrid, Cura 12.7 -> 10.9 min, PrusaSlicer
         // 12.1 -> 9.7 min).
         if (!across.empty())
-            if (auto turned = lay_out(across);
-                turned && (!found || (turned->second.first < found->second.first && turned->second.second < found->second.second)))
+            if (auto turned = lay_out(across); turned && (!found || faster_on_both(turned->second, found->second)))
                 found = std::move(turned);
         if (!found) continue;
-        std::optional<Layout> best = std::move(found->first);
-        const std::optional<std::pair<double, double>> cost = found->second;
+        Layout& best = found->first;
+        const RouteSeconds cost = found->second;
         const auto [tree_cura, tree_prusa] = region_tree();
-        // Either slicer may print it: walls only where both print them faster.
-        bool taken = cost->first < tree_cura && cost->second < tree_prusa;
+        bool taken = faster_on_both(cost, region_tree());
         // Asked only of walls that beat the tree, and not by much (kRivalFromShare): the rival lays
         // out and prices another structure. Walls give way only where it is cheaper on both routes,
         // as they are taken over the tree only where both print them faster (priced alone, the
         // hybrid over enclosure_lid's ears beat the walls on Cura only, and the whole printed slower).
-        if (taken && rival && cost->first >= kRivalFromShare * tree_cura && cost->second >= kRivalFromShare * tree_prusa) {
+        if (taken && rival && cost.first >= kRivalFromShare * tree_cura && cost.second >= kRivalFromShare * tree_prusa) {
             const auto [cura, prusa] = rival(own);
-            taken = !(tree_cura - cura < cost->first && tree_prusa - prusa < cost->second);
+            taken = !faster_on_both({tree_cura - cura, tree_prusa - prusa}, cost);
         }
         // The hybrid's regions are weighed in the whole below where taken, or where one route
         // alone prefers them. One both routes price dearer alone is left: each weighing grows a
         // tree for the whole, and on the tuning set, the validation parts and the examples (both
         // poses) one such region was cheaper in the whole, by 0.1 % and 0.3 % (the wheel at 80 mm).
-        const bool contested = (cost->first < tree_cura) != (cost->second < tree_prusa);
+        const bool contested = (cost.first < tree_cura) != (cost.second < tree_prusa);
         if (!taken && (!lays_out_hybrid(p) || !contested)) continue;
-        const double lines_cura = walls_route_seconds(kCuraRoute, best->w, p), lines_prusa = walls_route_seconds(kPrusaRoute, best->w, p);
-        priced.push_back({std::move(*best), lines_cura, lines_prusa, tree_cura, tree_prusa, cost->first, cost->second, taken});
+        const double lines_cura = walls_route_seconds(kCuraRoute, best.w, p), lines_prusa = walls_route_seconds(kPrusaRoute, best.w, p);
+        priced.push_back({std::move(best), lines_cura, lines_prusa, tree_cura, tree_prusa, cost.first, cost.second, taken});
     }
     // The hybrid's pieces each add a foot to the one tree the rest grows into, with its neighbours'
     // leaves: a region priced against its own tree alone may be dearer or cheaper in the whole (the
@@ -1990,7 +1995,7 @@ Ceilings lay_out_ceilings(const ModelQuery& q, const std::vector<Sample>& sample
         for (Priced& c : priced) {
             c.taken = !c.taken;
             const auto flipped = whole(priced);
-            if (flipped.first < now.first && flipped.second < now.second) now = flipped;
+            if (faster_on_both(flipped, now)) now = flipped;
             else c.taken = !c.taken;
         }
     }
