@@ -489,6 +489,21 @@ std::vector<Vec3> omitted_tip_tops(const RecordedTree& t, const std::vector<int>
     return tops;
 }
 
+// A piece's foot and the top of the tip under it, as far apart as the .scad's numbers (4 decimals)
+// put them.
+constexpr double kSameFoot = 1e-3;
+
+// The tops of the hybrid pieces (walls off the bed) that stood on the tips whose tops are
+// `tip_tops`: a piece is grounded by the middle of its foot (as the grounding check judges a solid),
+// so it went with the tip there. Each as its top's two ends.
+std::vector<std::array<Vec3, 2>> omitted_piece_tops(const RecordedTree& t, const std::vector<Vec3>& tip_tops) {
+    std::vector<std::array<Vec3, 2>> tops;
+    for (const auto& w : t.walls_off_bed)
+        if (std::any_of(tip_tops.begin(), tip_tops.end(), [&](const Vec3& top) { return distance(top, w.foot) < kSameFoot; }))
+            tops.push_back({w.top_from, w.top_to});
+    return tops;
+}
+
 void check_coverage(const Mesh& model, const ModelQuery& q, const std::vector<Shell>& shells, const Params& p,
                     const Tolerances& t, const CheckOptions& o, CheckResult& r) {
     JudgeOverhangs j = judge_overhangs(model, p.critical_angle, p.layer_height, t.spacing);
@@ -501,10 +516,18 @@ void check_coverage(const Mesh& model, const ModelQuery& q, const std::vector<Sh
     }
     // Where the omitted tips would have held the print: the model right above each one's top.
     NearGrid held(t.reach);
-    for (const Vec3& top : omitted_tip_tops(o.tree, o.omitted_struts)) {
+    auto hold_above = [&](const Vec3& top) {
         const double up = gap_up(q, top);
         held.add({top.x, top.y, top.z + (std::isfinite(up) && up > 0 ? up : 0.0)});
-        ++r.omitted_tips;
+    };
+    const std::vector<Vec3> tip_tops = omitted_tip_tops(o.tree, o.omitted_struts);
+    for (const Vec3& top : tip_tops) hold_above(top), ++r.omitted_tips;
+    // A piece held the ceiling along its whole top (a long top is a contact along its length):
+    // points half a reach apart along it, each holding what is within reach above it.
+    for (const auto& [a, b] : omitted_piece_tops(o.tree, tip_tops)) {
+        const int steps = static_cast<int>(std::ceil(distance(a, b) / (0.5 * t.reach)));
+        for (int k = 0; k <= steps; ++k) hold_above(a + (b - a) * (steps ? double(k) / steps : 0.0));
+        ++r.omitted_pieces;
     }
     r.omitted_struts = o.omitted_struts.size();
     for (const auto& a : j.corner_anchors) near.add(a);

@@ -69,7 +69,8 @@ struct CheckOptions {
     std::vector<Box3> left_out;         // regions the user blocked: their overhang needs no contact
     RecordedTree tree;                  // the run's tree as its .scad records it, and
     std::vector<int> omitted_struts;    // the struts the user left out there (omit_struts): what their
-                                        // tips held needs no contact
+                                        // tips held needs no contact, nor what the hybrid pieces on
+                                        // those tips held
 
     // Half the diagonal of a unit square, rounded up: the farthest a point of a flat overhang is
     // from the nearest lattice contact.
@@ -91,6 +92,7 @@ struct CheckResult {
     std::size_t omitted = 0;          // of overhang_points: held by a tip the user omitted, left out on purpose
     double omitted_area = 0;          // mm^2 of overhang they stand for
     std::size_t omitted_struts = 0, omitted_tips = 0;  // the user's omissions, and the tips they took out
+    std::size_t omitted_pieces = 0;  // the hybrid pieces standing on those tips, which went with them
     std::size_t face_points = 0, ridge_points = 0, lowest_points = 0;
     std::size_t contacts = 0;
     double reach = 0;

@@ -42,6 +42,7 @@ std::string CheckResult::summary() const {
     if (omitted_struts)
         s << "     left out     " << omitted << " overhang points (" << mm(omitted_area) << " mm2) that the "
           << omitted_tips << " tips of " << omitted_struts << " omitted strut" << (omitted_struts == 1 ? "" : "s")
+          << (omitted_pieces ? " and the " + std::to_string(omitted_pieces) + " hybrid piece" + (omitted_pieces == 1 ? "" : "s") + " on them" : "")
           << " held (omit_struts): left out on purpose by the user's edit\n";
     s << mark(gap_ok()) << " air gap      " << fused_contacts << " contacts closer to the model than the gap";
     if (min_air_gap < INFINITY) s << " (smallest " << mm(min_air_gap) << " mm at " << format_place(min_air_gap_at) << ")";
@@ -73,7 +74,7 @@ std::string CheckResult::json() const {
                      {"largest_gap_mm", largest_gap}, {"largest_gap_at", xyz(largest_gap_at)},
                      {"uncovered_area_mm2", uncovered_area}, {"uncovered", unc},
                      {"left_out_on_purpose", {{"points", left_out}, {"area_mm2", left_out_area}, {"regions", blocked_regions},
-                                              {"omitted_struts", {{"struts", omitted_struts}, {"tips", omitted_tips},
+                                              {"omitted_struts", {{"struts", omitted_struts}, {"tips", omitted_tips}, {"pieces", omitted_pieces},
                                                                   {"points", omitted}, {"area_mm2", omitted_area}}}}}};
     j["air_gap"] = {{"ok", gap_ok()}, {"fused", fused_contacts},
                     {"min_mm", min_air_gap < INFINITY ? nlohmann::ordered_json(min_air_gap) : nlohmann::ordered_json()}};

@@ -1,4 +1,4 @@
-// The support tree as a run's .scad records it (cs_struts, cs_leaves, cs_pillars), read back as
+// The support tree as a run's .scad records it (cs_struts, cs_leaves, cs_pillars, cs_walls), read back as
 // plain data (edit/edited_scad.hpp): what a reader that must not use the generator's own tree
 // needs to know of it. check uses it to leave out the overhang the user's omit_struts left bare.
 //
@@ -18,6 +18,12 @@ struct RecordedTree {
     std::vector<std::array<int, 2>> struts;  // cs_struts: [top node, bottom node], numbered as omit_struts numbers them
     std::vector<std::pair<int, Vec3>> tips;  // cs_leaves: a leaf node and the top of its tip
     std::vector<Vec3> pillar_tops;           // cs_pillars: each pillar's top, numbered after the struts
+    // cs_walls standing off the bed: the middle of the foot, and the top's two ends. A hybrid piece
+    // stands on the tip whose top is the middle of its foot, and goes with it.
+    struct Wall {
+        Vec3 foot, top_from, top_to;
+    };
+    std::vector<Wall> walls_off_bed;
 };
 
 }  // namespace cs

@@ -133,6 +133,22 @@ RecordedTree read_tree(const Reader& r) {
         t.pillar_tops.push_back(r.point(pl[0], line, "cs_pillars: top"));
         r.point(pl[1], line, "cs_pillars: bottom");
     }
+    if (!r.has("cs_walls")) return t;  // a run without walls writes none
+    const auto& walls = r.list("cs_walls");
+    for (size_t i = 0; i < walls.value.size(); ++i) {
+        const auto& w = walls.value[i];
+        const int line = r.line_of(walls, i);
+        const std::string what = "cs_walls: each must be [[x, y] from, [x, y] to, z of the foot, z of the top, thickness]";
+        auto xy = [&](const nlohmann::json& p) {
+            if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) r.fail(line, what);
+            return Vec3{p[0].get<double>(), p[1].get<double>(), 0};
+        };
+        if (!w.is_array() || w.size() < 5 || !w[2].is_number() || !w[3].is_number() || !w[4].is_number()) r.fail(line, what);
+        const Vec3 from = xy(w[0]), to = xy(w[1]);
+        const double foot = w[2].get<double>(), top = w[3].get<double>();
+        if (foot > 0)
+            t.walls_off_bed.push_back({{0.5 * (from.x + to.x), 0.5 * (from.y + to.y), foot}, {from.x, from.y, top}, {to.x, to.y, top}});
+    }
     return t;
 }
 

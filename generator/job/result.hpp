@@ -24,6 +24,8 @@ struct Supports {
                                         // .scad, so its tips come back when the omission is undone
     std::vector<Body> bodies;
     std::vector<CeilingWall> walls;  // under ceilings low over the bed or a floor (ceilings/ceilings.hpp)
+    std::vector<CeilingWall> grown_walls;  // before omit_struts took out the hybrid pieces on its branches
+                                           // (pipeline.hpp prune_pieces): what the .scad records
     Mesh mesh;                       // the bodies, then the walls
     double volume = 0;         // of the support solid, overlaps at joints counted once (solid_volume), mm^3
     double bodies_volume = 0;  // the bodies' volumes added up, overlaps counted twice, mm^3

@@ -199,17 +199,17 @@ std::string tree_data(const Supports& sp) {
 // The walls under low ceilings: each a straight piece with a flat foot and top.
 std::string wall_data(const Supports& sp) {
     Rows walls;
-    for (size_t i = 0; i < sp.walls.size(); ++i) {
-        const CeilingWall& w = sp.walls[i];
+    for (size_t i = 0; i < sp.grown_walls.size(); ++i) {
+        const CeilingWall& w = sp.grown_walls[i];
         walls.push_back({std::to_string(i) + (w.bridge ? " bridge" : w.join ? " join" : w.tail ? " row (tail)" : " row") + (w.on_tree ? " on the tree" : ""),
                          fmt::format("[[{}, {}], [{}, {}], {}, {}, {}{}]", num(w.from.x), num(w.from.y), num(w.to.x), num(w.to.y),
                                      num(w.bottom), num(w.top), num(w.thickness), w.bridge ? ", 1" : "")});
     }
     std::string s = "// Walls under low ceilings: [[x, y] from, [x, y] to, z of the foot (0: the bed, else a gap over the\n"
                     "// model), z of the top (a gap under the ceiling), thickness (`wall`, or the strength rule's for its height)]\n";
-    if (std::any_of(sp.walls.begin(), sp.walls.end(), [](const CeilingWall& w) { return w.on_tree; }))
+    if (std::any_of(sp.grown_walls.begin(), sp.grown_walls.end(), [](const CeilingWall& w) { return w.on_tree; }))
         s += "// A piece \"on the tree\" (the hybrid under a high ceiling) stands on the tip under the middle of its foot.\n";
-    if (std::any_of(sp.walls.begin(), sp.walls.end(), [](const CeilingWall& w) { return w.bridge; }))
+    if (std::any_of(sp.grown_walls.begin(), sp.grown_walls.end(), [](const CeilingWall& w) { return w.bridge; }))
         s += "// A \"bridge\" (a sixth element, 1) fills the space between two neighbouring rows: the three are one slab,\n"
              "// whose outline Cura prints with the .curaprofile (no support infill), each row once instead of as a loop;\n"
              "// the .prusa.3mf and the .supported.stl leave the bridges out.\n";
@@ -247,7 +247,7 @@ std::string emit_scad(const Supports& sp, const Job& job, const ScadMeta& meta) 
     s += regrow_section(job.params);
     s += provenance(job, meta);
     s += tree_data(sp);
-    if (!sp.walls.empty()) s += wall_data(sp);  // no walls: the file is as it was before walls existed
+    if (!sp.grown_walls.empty()) s += wall_data(sp);  // no walls: the file is as it was before walls existed
     s += "include <clever_support.scad>\n\n";
     s += "union() {\n";
     s += "    if (show_model) color(\"lightgray\") import(cs_model_file, convexity = 10);\n";
@@ -256,7 +256,8 @@ std::string emit_scad(const Supports& sp, const Job& job, const ScadMeta& meta) 
     s += "                tip_diameter, feet, foot_height, foot_extra, clearance);\n";
     // Only with walls: an empty third child changes OpenSCAD 2021's union of the other two (the
     // bundled arches example's union then had shells that were not watertight).
-    if (!sp.walls.empty()) s += "    if (show_supports) cs_walls(cs_walls);\n";
+    // The tree and the omissions too: a hybrid piece goes with the tip it stands on (prune_pieces).
+    if (!sp.grown_walls.empty()) s += "    if (show_supports) cs_walls(cs_walls, cs_tree_record, omit_struts);\n";
     s += "}\n";
     s += "cs_show_edits(support_blockers, support_points);  // in the preview only\n";
     return s;

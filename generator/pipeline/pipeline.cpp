@@ -254,8 +254,13 @@ Supports finish_supports(SizedTree grown, const Params& p, const std::vector<int
     s.grown_struts = grown.tree.struts;
     s.grown_pillars = grown.tree.pillars;
     for (const Node& n : grown.tree.nodes) s.grown_kinds.push_back(n.kind);
-    if (omit.empty()) s.sized = std::move(grown);  // sized as grown: nothing pruned
-    else s.sized = size_struts(prune_struts(std::move(grown.tree), omit), p);
+    s.grown_walls = walls;
+    if (omit.empty()) {
+        s.sized = std::move(grown);  // sized as grown: nothing pruned
+    } else {
+        s.sized = size_struts(prune_struts(grown.tree, omit), p);
+        walls = prune_pieces(std::move(walls), grown.tree, s.sized.tree);
+    }
     const std::optional<SlicerCost>& priced = s.sized.tree.slicer_cost;  // reset by prune_struts
     s.slicer_cost = priced ? *priced : estimate_slicer_cost(s.sized.tree, mean_strut_widths(s.sized), p);
     s.bodies = build_bodies(s.sized, p);
@@ -326,6 +331,37 @@ SupportTree prune_struts(SupportTree t, const std::vector<int>& omit) {
         if (!gone[e]) struts.push_back(t.struts[e]);
     t.struts = std::move(struts);
     return t;
+}
+
+namespace {
+
+// A foot and the top of the tip under it, as far apart as a .scad's numbers (4 decimals) put them.
+constexpr double kSameFoot = 1e-3;
+
+// Does `t` carry a tip whose top is `foot`: a leaf there with a strut below it?
+bool carries_tip_at(const SupportTree& t, const std::vector<char>& strut_below, const Vec3& foot) {
+    for (size_t v = 0; v < t.nodes.size(); ++v)
+        if (t.nodes[v].kind == NodeKind::Leaf && strut_below[v] && distance(t.nodes[v].tip, foot) < kSameFoot) return true;
+    return false;
+}
+
+std::vector<char> strut_below(const SupportTree& t) {
+    std::vector<char> below(t.nodes.size(), 0);
+    for (const Strut& s : t.struts) below[s.top] = 1;
+    return below;
+}
+
+}  // namespace
+
+std::vector<CeilingWall> prune_pieces(std::vector<CeilingWall> walls, const SupportTree& grown, const SupportTree& pruned) {
+    const std::vector<char> grown_below = strut_below(grown), pruned_below = strut_below(pruned);
+    std::vector<CeilingWall> kept;
+    for (CeilingWall& w : walls) {
+        const Vec3 foot = feet_of({w}).front();
+        if (w.bottom <= 0 || !carries_tip_at(grown, grown_below, foot) || carries_tip_at(pruned, pruned_below, foot))
+            kept.push_back(std::move(w));
+    }
+    return kept;
 }
 
 namespace {

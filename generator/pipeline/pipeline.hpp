@@ -57,8 +57,10 @@ TreeCounter tree_counter(const ModelQuery& placed, const Params& p, const std::v
 FeetTreeCounter feet_tree_counter(const ModelQuery& placed, const Params& p,
                                   const std::vector<Box3>& support_blockers = {});
 // Supports from a grown tree (and the ceiling walls beside it): struts in `omit` (indices into
-// `grown`) are pruned with their branches first. A tree already sized (grow_cheaper_tree) is sized
-// again only when struts are pruned; its estimate is kept unless struts are pruned.
+// `grown`) are pruned with their branches first, and the hybrid pieces on them (prune_pieces;
+// Supports::grown_walls keeps them, as the .scad records them). A tree already sized
+// (grow_cheaper_tree) is sized again only when struts are pruned; its estimate is kept unless
+// struts are pruned.
 Supports finish_supports(SupportTree grown, const Params& p, const std::vector<int>& omit = {},
                          std::vector<CeilingWall> walls = {});
 Supports finish_supports(SizedTree grown, const Params& p, const std::vector<int>& omit = {},
@@ -69,6 +71,16 @@ Supports finish_supports(SizedTree grown, const Params& p, const std::vector<int
 // their indices; those left without a strut become Dropped. Throws ParameterError for an index
 // that is neither a strut nor a pillar of the tree.
 SupportTree prune_struts(SupportTree tree, const std::vector<int>& omit);
+
+// `walls` without the hybrid pieces an omission took out: a piece stands on the tip under the
+// middle of its foot (ceilings/hybrid.hpp feet_of), and goes with that tip when `grown` carries it
+// (a leaf there with a strut below, as near as a .scad's 4 decimals put it: `apply` prunes the
+// walls a file records) and `pruned` (prune_struts of `grown`) no longer does. Every other wall
+// stays: no tip stands under a wall on the bed or on the model. Without the rule the piece stays,
+// resting on nothing (`check`: grounding fails).
+// Example: the arches example, omit_struts [28] (strut 28 leaves the tip under piece 0): every wall
+// but piece 0.
+std::vector<CeilingWall> prune_pieces(std::vector<CeilingWall> walls, const SupportTree& grown, const SupportTree& pruned);
 
 // The samples a user's edits leave: none over a blocker or whose tip would pass through one (a
 // sample beside a blocker whose tip would only graze it is moved out, just clear of the box, onto

@@ -78,7 +78,8 @@ std::vector<CeilingWall> walls_from_scad(const ScadValues& values) {
 
 Supports supports_from_scad(const ScadValues& values, const std::vector<int>& omit, const Params& p) {
     Supports s;
-    s.sized = size_struts(prune_struts(tree_from_scad(values).tree, omit), p);
+    const SupportTree grown = tree_from_scad(values).tree;
+    s.sized = size_struts(prune_struts(grown, omit), p);
     // Where the file says, not where the rules would put them again from its numbers: a contact
     // node's `contact` is already its tip's bottom, and the overlap is the one cs_tree draws with.
     const auto& nodes = s.sized.tree.nodes;
@@ -87,7 +88,8 @@ Supports supports_from_scad(const ScadValues& values, const std::vector<int>& om
     if (auto it = values.find("cs_overlap"); it != values.end() && it->second.value.is_number())
         s.sized.overlap = it->second.value.get<double>();
     s.bodies = build_bodies(s.sized, p);
-    s.walls = walls_from_scad(values);
+    s.grown_walls = walls_from_scad(values);
+    s.walls = omit.empty() ? s.grown_walls : prune_pieces(s.grown_walls, grown, s.sized.tree);
     return s;
 }
 

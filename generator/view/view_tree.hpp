@@ -34,8 +34,9 @@ std::vector<CeilingWall> walls_from_scad(const ScadValues& values);
 // are left empty): its tree without the struts and pillars in `omit` and what hangs from them
 // (prune_struts), sized with `p` (size_struts), each contact tip ending where the file records it
 // and every joint overlapping by its cs_overlap, as the library's cs_tree draws them; then its
-// walls. `values`: read_edited_scad has checked the file. Throws ParameterError for an index of
-// `omit` that names no strut or pillar.
+// walls, without the hybrid pieces standing on the tips `omit` takes out (prune_pieces; all of
+// them in grown_walls), as the library's cs_walls draws them. `values`: read_edited_scad has
+// checked the file. Throws ParameterError for an index of `omit` that names no strut or pillar.
 // Example: supports_from_scad(parse_scad_values(text, "m.scad"), {3}, p).bodies: the bodies of the
 //          file's tree without strut 3's branch.
 Supports supports_from_scad(const ScadValues& values, const std::vector<int>& omit, const Params& p);

@@ -132,6 +132,7 @@ TEST(SupportsFromScad, AreTheBodiesAndWallsTheRunBuilt) {
             Result r = run_job(job);
             Supports run = r.supports;
             run.walls.push_back({{-30, -20, 0}, {-10, -20, 0}, 0, 4.25, false, 0.6});
+            run.grown_walls = run.walls;  // as finish_supports records them (no piece on the tree here)
             const ScadMeta meta{"test", r.input_sha256, input, "part.model.stl", pose_numbers(r.placement), ""};
             const std::string text = emit_scad(run, job, meta);
             const Supports back = supports_from_scad(parse_scad_values(text, "part.scad"), omit, job.params);
