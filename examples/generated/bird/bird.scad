@@ -76,7 +76,7 @@ buildplate_only = false;
 // How this file was made: `clever-support regrow` reads these.
 cs_version = "0.1.0";
 cs_input = "examples/models/bird.stl";
-cs_input_path = "/work/wt-islands3/examples/models/bird.stl";
+cs_input_path = "/work/main/examples/models/bird.stl";
 cs_input_sha256 = "675ba0dfdd4bddc15ca8a0c273e66f3b30076687e4f097ef4405360d385153cf";
 cs_defines = [];
 cs_preset = "generic-0.4";

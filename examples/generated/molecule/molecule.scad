@@ -76,7 +76,7 @@ buildplate_only = false;
 // How this file was made: `clever-support regrow` reads these.
 cs_version = "0.1.0";
 cs_input = "examples/models/molecule.stl";
-cs_input_path = "/work/wt-islands3/examples/models/molecule.stl";
+cs_input_path = "/work/main/examples/models/molecule.stl";
 cs_input_sha256 = "4671b5efd23397f39fe16bd2f17b8971568c01d88e7267f170aac012f48540f2";
 cs_defines = [];
 cs_preset = "generic-0.4";

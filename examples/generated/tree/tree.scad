@@ -76,7 +76,7 @@ buildplate_only = false;
 // How this file was made: `clever-support regrow` reads these.
 cs_version = "0.1.0";
 cs_input = "examples/models/tree.stl";
-cs_input_path = "/work/wt-islands3/examples/models/tree.stl";
+cs_input_path = "/work/main/examples/models/tree.stl";
 cs_input_sha256 = "f322803e1825dc5091c0288c3f0ee3d900438df014a4862ec0e8c05a98789a9f";
 cs_defines = [];
 cs_preset = "generic-0.4";

@@ -51,6 +51,9 @@
 //       omit: strut indices left out with every strut above them (their branch), and pillars
 //       (pillar i is index len(struts) + i); highlight: a
 //       strut index drawn red (-1: none).
+//   cs_walls(walls, tree, omit)
+//       the walls under ceilings (cs_walls in generated files), without the hybrid pieces standing
+//       on the tips that `omit` takes out of the tree record `tree`.
 //   cs_show_edits(blockers, points): see-through boxes and points in the preview (not rendered).
 //   cs_strut_widths(...) returns [[upper, lower], ...] per strut, for inspection with echo().
 
@@ -265,9 +268,28 @@ module cs_wall(w) {
         convexity = 2);
 }
 
-module cs_walls(walls) {
-    color("darkorange") for (w = walls) cs_wall(w);
+// The walls, without the hybrid pieces standing on tips that `omit` takes out of `tree` (the tree
+// record cs_tree draws): a piece off the bed whose foot's middle is such a tip's top goes with it,
+// as the generator's prune_pieces (pipeline.hpp) decides; else it would hang in the air. Files
+// written by earlier versions call cs_walls(walls) alone: every wall is drawn.
+module cs_walls(walls, tree = undef, omit = []) {
+    gone_tops = cs_gone_tip_tops(tree, omit);
+    color("darkorange") for (w = walls) if (!cs_on_tip_among(w, gone_tops)) cs_wall(w);
 }
+
+// The tops of the tips that `omit` takes out of a tree record (a leaf's tip goes with the strut
+// leaving the leaf, as in cs_tree).
+function cs_gone_tip_tops(tree, omit) =
+    is_undef(tree) || len(omit) == 0 || len(tree[1]) == 0 ? [] :
+    let(n = len(tree[0]), struts = tree[1],
+        gone = cs_gone(n, struts, omit),
+        out = cs_outgoing(n, struts, [for (e = struts) true]))
+    [for (l = tree[2]) if (out[l[0]] >= 0 && gone[out[l[0]]]) l[2]];
+
+// Does wall w stand off the bed on one of the tips whose tops are `tops` (the middle of its foot,
+// as near as the data's 4 decimals put them)?
+function cs_on_tip_among(w, tops) =
+    w[2] > 0 && len([for (t = tops) if (norm([(w[0][0] + w[1][0]) / 2, (w[0][1] + w[1][1]) / 2, w[2]] - t) < 1e-3) 1]) > 0;
 
 // A user's support blockers (see-through blue) and support points (red) in the preview only:
 // never part of a rendered solid.
