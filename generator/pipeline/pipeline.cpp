@@ -338,27 +338,13 @@ namespace {
 // A foot and the top of the tip under it, as far apart as a .scad's numbers (4 decimals) put them.
 constexpr double kSameFoot = 1e-3;
 
-// Does `t` carry a tip whose top is `foot`: a leaf there with a strut below it?
-bool carries_tip_at(const SupportTree& t, const std::vector<char>& strut_below, const Vec3& foot) {
-    for (size_t v = 0; v < t.nodes.size(); ++v)
-        if (t.nodes[v].kind == NodeKind::Leaf && strut_below[v] && distance(t.nodes[v].tip, foot) < kSameFoot) return true;
-    return false;
-}
-
-std::vector<char> strut_below(const SupportTree& t) {
-    std::vector<char> below(t.nodes.size(), 0);
-    for (const Strut& s : t.struts) below[s.top] = 1;
-    return below;
-}
-
 }  // namespace
 
 std::vector<CeilingWall> prune_pieces(std::vector<CeilingWall> walls, const SupportTree& grown, const SupportTree& pruned) {
-    const std::vector<char> grown_below = strut_below(grown), pruned_below = strut_below(pruned);
     std::vector<CeilingWall> kept;
     for (CeilingWall& w : walls) {
-        const Vec3 foot = feet_of({w}).front();
-        if (w.bottom <= 0 || !carries_tip_at(grown, grown_below, foot) || carries_tip_at(pruned, pruned_below, foot))
+        const std::vector<Vec3> foot = feet_of({w});
+        if (w.bottom <= 0 || !feet_carried(grown, foot, kSameFoot) || feet_carried(pruned, foot, kSameFoot))
             kept.push_back(std::move(w));
     }
     return kept;

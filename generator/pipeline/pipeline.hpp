@@ -74,8 +74,8 @@ SupportTree prune_struts(SupportTree tree, const std::vector<int>& omit);
 
 // `walls` without the hybrid pieces an omission took out: a piece stands on the tip under the
 // middle of its foot (ceilings/hybrid.hpp feet_of), and goes with that tip when `grown` carries it
-// (a leaf there with a strut below, as near as a .scad's 4 decimals put it: `apply` prunes the
-// walls a file records) and `pruned` (prune_struts of `grown`) no longer does. Every other wall
+// (tree/feet.hpp feet_carried, as near as a .scad's 4 decimals put it: `apply` prunes the walls a
+// file records) and `pruned` (prune_struts of `grown`) no longer does. Every other wall
 // stays: no tip stands under a wall on the bed or on the model. Without the rule the piece stays,
 // resting on nothing (`check`: grounding fails).
 // Example: the arches example, omit_struts [28] (strut 28 leaves the tip under piece 0): every wall

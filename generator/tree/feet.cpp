@@ -33,20 +33,22 @@ SupportTree hang_feet(SupportTree hung, const std::vector<Vec3>& feet, const Par
     return hung;
 }
 
-std::vector<Vec3> lost_feet(const SupportTree& grown, const std::vector<Vec3>& feet) {
+std::vector<Vec3> lost_feet(const SupportTree& grown, const std::vector<Vec3>& feet, double within) {
     std::vector<char> below(grown.nodes.size(), 0);
     for (const Strut& s : grown.struts) below[s.top] = 1;
     std::vector<Vec3> lost;
     for (const Vec3& f : feet) {
         const bool held = std::any_of(grown.nodes.begin(), grown.nodes.end(), [&](const Node& n) {
             const std::size_t i = &n - grown.nodes.data();
-            return n.kind == NodeKind::Leaf && below[i] && distance(n.tip, f) < 1e-9;
+            return n.kind == NodeKind::Leaf && below[i] && distance(n.tip, f) < within;
         });
         if (!held) lost.push_back(f);
     }
     return lost;
 }
 
-bool feet_carried(const SupportTree& grown, const std::vector<Vec3>& feet) { return lost_feet(grown, feet).empty(); }
+bool feet_carried(const SupportTree& grown, const std::vector<Vec3>& feet, double within) {
+    return lost_feet(grown, feet, within).empty();
+}
 
 }  // namespace cs

@@ -20,10 +20,11 @@ namespace cs {
 // point each leaf holds, top down, then x, then y): the same leaves, whichever way they came.
 SupportTree hang_feet(SupportTree hung, const std::vector<Vec3>& feet, const Params& p);
 
-// Does the grown tree carry every foot: a leaf whose tip's top is the foot, with a strut below it?
-bool feet_carried(const SupportTree& grown, const std::vector<Vec3>& feet);
+// Does the grown tree carry every foot: a leaf whose tip's top is the foot (within `within` mm:
+// a .scad read back writes 4 decimals), with a strut below it?
+bool feet_carried(const SupportTree& grown, const std::vector<Vec3>& feet, double within = 1e-9);
 
 // The feet the grown tree does not carry, in the order given.
-std::vector<Vec3> lost_feet(const SupportTree& grown, const std::vector<Vec3>& feet);
+std::vector<Vec3> lost_feet(const SupportTree& grown, const std::vector<Vec3>& feet, double within = 1e-9);
 
 }  // namespace cs
