@@ -3,69 +3,25 @@
 // Every error any of them throws becomes a message and an exit code in one place (cli/exit_code.hpp).
 #include <CLI/CLI.hpp>
 #include <exception>
-#if defined(__GLIBC__)  // defined by the C library's headers above
-#include <malloc.h>
-#include <sys/mman.h>
-#include <unistd.h>
-#endif
-#include <cstddef>
-#include <cstdint>
-#include <cstdlib>
 
 #include "cli/command_line.hpp"
 #include "cli/exit_code.hpp"
+#include "cli/huge_pages.hpp"
 #include "core/errors.hpp"
 
 namespace {
 
 using namespace cs;
 
-int run_command(const CommandLine& cl) {
+int run_command(const CommandLine& cl, char** argv) {
     if (cl.presets_cmd->parsed()) return cmd_presets();
     if (cl.render_cmd->parsed()) return cmd_render(cl.render);
     if (cl.apply_cmd->parsed()) return cmd_apply(cl.apply);
     if (cl.check_cmd->parsed()) return cmd_check(cl.check);
     if (cl.regrow_cmd->parsed()) return cmd_regrow(cl.regrow, cl.run);
     if (cl.view_cmd->parsed()) return run_view_command(cl.view);
+    rerun_on_huge_pages(cl.generate.input, argv);  // a large mesh: the whole run on huge pages
     return cmd_generate(cl.generate, cl.run);
-}
-
-// The heap on transparent huge pages. Each 4 KB page the heap first touches costs a page fault, and
-// on some virtual machines a dear one: igea (270k triangles) took 39.5k faults and 0.35 of its
-// 2.1 CPU-s in the kernel on the bench machine (2 x AMD EPYC, 2026-12-06). The first kHugeHeap of
-// the main heap, reserved at once (address space only) and marked MADV_HUGEPAGE, takes 2 MB pages:
-// igea 5.9k faults and 1.6 CPU-s, the same as glibc's own glibc.malloc.hugetlb=1 tunable, which
-// only the environment of a new process can set. Where the kernel's transparent huge pages are off,
-// the advice does nothing.
-// Under M_TRIM_THRESHOLD (tune_allocator), so glibc keeps it when it is free.
-constexpr std::size_t kHugeHeap = std::size_t{256} << 20;
-constexpr std::size_t kHugePage = std::size_t{2} << 20;
-
-void heap_on_huge_pages() {
-#if defined(__GLIBC__)
-    const auto brk_now = [] { return reinterpret_cast<std::uintptr_t>(sbrk(0)); };
-    const std::uintptr_t before = brk_now();
-    mallopt(M_TOP_PAD, static_cast<int>(kHugeHeap));
-    void* volatile grow = malloc(std::size_t{1} << 20);  // the heap grows by it and the pad
-    free(grow);
-    mallopt(M_TOP_PAD, 128 << 10);  // glibc's default again
-    const std::uintptr_t lo = (before + kHugePage - 1) / kHugePage * kHugePage, hi = brk_now() / kHugePage * kHugePage;
-    if (hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);
-#endif
-}
-
-// One run builds and drops many buffers of megabytes (the mesh, its index, the 3MF XML and its
-// deflated package, the STLs). glibc maps each one above 128 KB fresh from the kernel and unmaps it
-// on free, so every run pays the page faults again, and it hands the top of the heap back as soon
-// as 128 KB are free there. Keeping buffers up to 32 MB on the heap and freed memory up to 512 MB:
-// igea (270k triangles) 2.5 -> 2.0 CPU-s, peak memory +9 %. A process setting, hence here in main.
-// Then the heap on huge pages.
-void tune_allocator() {
-#if defined(__GLIBC__)
-    mallopt(M_MMAP_THRESHOLD, 32 << 20);
-    mallopt(M_TRIM_THRESHOLD, 512 << 20);
-    heap_on_huge_pages();
-#endif
 }
 
 }  // namespace
@@ -92,7 +48,7 @@ int main(int argc, char** argv) {
         } catch (const CLI::ExtrasError&) {
             throw UsageError(unexpected_arguments(app));
         }
-        return run_command(cl);
+        return run_command(cl, argv);
     } catch (const CLI::Success& e) {  // --help, --version
         return app.exit(e);
     } catch (...) {

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli/huge_pages.hpp"
 #include "core/errors.hpp"
 #include "mesh/mesh_io.hpp"
 #include "mesh/repair.hpp"
@@ -707,4 +708,69 @@ TEST(FirstHour, ThePoseInWords) {
     Box3 mapped = bounding_box(design), placed = bounding_box(read_mesh(out + "/tee.model.stl"));
     EXPECT_NEAR(distance(mapped.min, placed.min), 0, 1e-3);
     EXPECT_NEAR(distance(mapped.max, placed.max), 0, 1e-3);
+}
+
+// ---------------------------------------------------------------- huge pages (cli/huge_pages.hpp)
+
+TEST(HugePages, OnlyALargeInputRunsAgainAndOnlyWhereTheKernelLeavesItToTheProcess) {
+    const std::string madvise = "always [madvise] never\n";
+    EXPECT_TRUE(wants_rerun(kRerunFromBytes, madvise, nullptr));
+    EXPECT_TRUE(wants_rerun(kRerunFromBytes, madvise, "glibc.malloc.arena_max=2"));
+    EXPECT_FALSE(wants_rerun(kRerunFromBytes - 1, madvise, nullptr));  // the heap's huge pages do
+    EXPECT_FALSE(wants_rerun(kRerunFromBytes, "[always] madvise never\n", nullptr));
+    EXPECT_FALSE(wants_rerun(kRerunFromBytes, "always madvise [never]\n", nullptr));
+    EXPECT_FALSE(wants_rerun(kRerunFromBytes, "", nullptr));  // no such kernel file
+    // Named already, by the user or by the run that started this one: never again (no loop).
+    EXPECT_FALSE(wants_rerun(kRerunFromBytes, madvise, "glibc.malloc.hugetlb=0"));
+    EXPECT_FALSE(wants_rerun(kRerunFromBytes, madvise, with_huge_tunable(nullptr).c_str()));
+    EXPECT_FALSE(wants_rerun(kRerunFromBytes, madvise, with_huge_tunable("glibc.malloc.arena_max=2").c_str()));
+}
+
+TEST(HugePages, TheTunableIsAddedToWhatTheEnvironmentHeld) {
+    EXPECT_EQ(with_huge_tunable(nullptr), "glibc.malloc.hugetlb=1");
+    EXPECT_EQ(with_huge_tunable(""), "glibc.malloc.hugetlb=1");
+    EXPECT_EQ(with_huge_tunable("glibc.malloc.arena_max=2"), "glibc.malloc.arena_max=2:glibc.malloc.hugetlb=1");
+}
+
+// A mesh file past kRerunFromBytes (a small part, and blank lines after it: an ASCII STL may end
+// so) runs again where the kernel leaves huge pages to the process (the loader, LD_DEBUG=files,
+// starts the program twice), with the same arguments: its outputs are those of the run that is not
+// run again (the tunable set already), byte for byte. A build with sanitizers never runs again.
+TEST(HugePages, ALargeInputRunAgainWritesWhatItWouldHave) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+    const bool sanitized = true;
+#else
+    const bool sanitized = false;
+#endif
+    const bool madvise = contains(read_text("/sys/kernel/mm/transparent_hugepage/enabled"), "[madvise]");
+    TempDir tmp;
+    {
+        const Mesh m = cs::test::t_shape();
+        std::ofstream stl(tmp / "large.stl");
+        stl << "solid tee\n";
+        for (const Triangle& t : m.faces) {
+            stl << "facet normal 0 0 0\nouter loop\n";
+            for (int k = 0; k < 3; ++k) {
+                const Vec3& v = m.vertices[t[k]];
+                stl << "vertex " << v.x << " " << v.y << " " << v.z << "\n";
+            }
+            stl << "endloop\nendfacet\n";
+        }
+        stl << "endsolid tee\n";
+        const std::string blank(1023, ' ');
+        for (std::uintmax_t n = 0; n < kRerunFromBytes / 1024 + 1; ++n) stl << blank << '\n';
+    }
+    ASSERT_GE(fs::file_size(tmp / "large.stl"), kRerunFromBytes);
+    const std::string args = " --orient keep --no-timings --out ";
+    CliRun again = cs::test::run("LD_DEBUG=files " + quote(cs::test::cli()) + " " + quote(tmp / "large.stl") + args +
+                                 quote(tmp / "again"));
+    ASSERT_EQ(again.code, 0) << again.out;
+    std::size_t starts = 0;
+    for (std::size_t at = 0; (at = again.out.find("initialize program:", at)) != std::string::npos; ++at) ++starts;
+    EXPECT_EQ(starts, madvise && !sanitized ? 2u : 1u) << again.out;
+    CliRun once = cs::test::run("GLIBC_TUNABLES=glibc.malloc.hugetlb=1 " + quote(cs::test::cli()) + " " +
+                                quote(tmp / "large.stl") + args + quote(tmp / "once"));
+    ASSERT_EQ(once.code, 0) << once.out;
+    for (const char* file : {"large.scad", "large.supports.stl", "large.model.stl", "large.3mf"})
+        EXPECT_EQ(read_text(tmp / "again" + "/" + file), read_text(tmp / "once" + "/" + file)) << file;
 }
