@@ -81,6 +81,11 @@ nlohmann::ordered_json settings_json(const Judged& j, const CheckResult& r) {
 
 }  // namespace
 
+std::vector<std::string> meshes_checked(const CheckArgs& c) {
+    const Judged j = judged_run(c);
+    return {j.model, j.supports};
+}
+
 int cmd_check(const CheckArgs& c) {
     const Judged j = judged_run(c);
     Mesh model = read_mesh(j.model);  // judged as written (check/check.hpp)

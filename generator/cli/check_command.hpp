@@ -29,4 +29,8 @@ struct CheckArgs {
 // read, ParameterError for a bad setting.
 int cmd_check(const CheckArgs& c);
 
+// The two meshes cmd_check reads (the model, the supports), for cli/huge_pages.hpp. Throws what
+// cmd_check throws for a run it cannot find.
+std::vector<std::string> meshes_checked(const CheckArgs& c);
+
 }  // namespace cs

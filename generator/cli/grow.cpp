@@ -70,6 +70,8 @@ int cmd_generate(const GenerateArgs& g, const RunOptions& o) {
     return code;
 }
 
+std::string regrown_input(const RegrowArgs& a) { return read_edited_scad(a.scad).job.input; }
+
 int cmd_regrow(const RegrowArgs& a, const RunOptions& o) {
     const std::string& file = a.scad;
     EditedScad edited = read_edited_scad(file);

@@ -45,4 +45,8 @@ int cmd_generate(const GenerateArgs& g, const RunOptions& o);
 // Throws InputError for a .scad that cannot be read back, ParameterError for a bad -D.
 int cmd_regrow(const RegrowArgs& a, const RunOptions& o);
 
+// The mesh or part cmd_regrow reads (the .scad's cs_input_path), for cli/huge_pages.hpp. Throws
+// what cmd_regrow throws for a .scad it cannot read back.
+std::string regrown_input(const RegrowArgs& a);
+
 }  // namespace cs

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <system_error>
 #if defined(__GLIBC__)  // defined by the C++ library's headers above
 #include <malloc.h>
@@ -81,19 +82,23 @@ std::string with_huge_tunable(const char* tunables) {
     return std::string(tunables) + ":" + std::string(kHugeTunable);
 }
 
-void rerun_on_huge_pages(const std::string& input, char** argv) {
+void rerun_on_huge_pages(const std::vector<std::string>& inputs, char** argv) {
 #if defined(__GLIBC__)
-    if (kSanitized || input.empty()) return;
-    std::error_code ec;
-    const std::uintmax_t bytes = std::filesystem::file_size(input, ec);
-    if (ec) return;  // reading it says what is wrong
-    const char* tunables = std::getenv("GLIBC_TUNABLES");
-    if (!wants_rerun(bytes, read_thp_mode(), tunables)) return;
-    if (setenv("GLIBC_TUNABLES", with_huge_tunable(tunables).c_str(), 1) != 0) return;
+    if (kSanitized) return;
+    std::uintmax_t bytes = 0;
+    for (const std::string& input : inputs) {
+        std::error_code ec;
+        const std::uintmax_t size = std::filesystem::file_size(input, ec);
+        if (!ec) bytes += size;  // one that cannot be read: the command says what is wrong
+    }
+    const char* env = std::getenv("GLIBC_TUNABLES");
+    if (!wants_rerun(bytes, read_thp_mode(), env)) return;
+    const std::optional<std::string> before = env ? std::optional<std::string>(env) : std::nullopt;
+    if (setenv("GLIBC_TUNABLES", with_huge_tunable(env).c_str(), 1) != 0) return;
     execv("/proc/self/exe", argv);
     // Not run again: this run goes on as it is, without the tunable in what it starts (OpenSCAD,
     // the slicers).
-    if (tunables) setenv("GLIBC_TUNABLES", tunables, 1);
+    if (before) setenv("GLIBC_TUNABLES", before->c_str(), 1);
     else unsetenv("GLIBC_TUNABLES");
 #endif
 }

@@ -7,7 +7,7 @@
 //   - tune_allocator(), first thing in main: glibc keeps buffers up to 32 MB on its heap and freed
 //     memory up to 512 MB, and the heap's first 256 MB take huge pages. Enough for a model of up
 //     to a few hundred thousand triangles.
-//   - rerun_on_huge_pages(input, argv), once the command line is parsed: a larger input runs the
+//   - rerun_on_huge_pages(inputs, argv), once the command line is parsed: larger inputs run the
 //     whole process again with glibc's own tunable `glibc.malloc.hugetlb=1`, which puts every
 //     allocation on huge pages (the buffers over 32 MB, which glibc maps apart from its heap, and
 //     the heap past its first 256 MB) and which only the environment of a new process can set.
@@ -16,13 +16,14 @@
 //   int main(int argc, char** argv) {
 //       cs::tune_allocator();
 //       ... parse ...
-//       cs::rerun_on_huge_pages(input_path, argv);  // returns only where it does not run again
+//       cs::rerun_on_huge_pages({input_path}, argv);  // returns only where it does not run again
 //   }
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace cs {
 
@@ -52,9 +53,10 @@ bool wants_rerun(std::uintmax_t input_bytes, std::string_view thp_enabled, const
 std::string with_huge_tunable(const char* tunables);
 
 // Runs this program again (/proc/self/exe, the same arguments) with kHugeTunable where wants_rerun
-// says so for the file `input` and this process; returns where it does not, or cannot (any failure
-// leaves the run as it is: the tunable only saves time). Does nothing in a build with sanitizers,
-// whose allocator is their own, or outside glibc.
-void rerun_on_huge_pages(const std::string& input, char** argv);
+// says so for the files `inputs` together (those that cannot be read count nothing) and this
+// process; returns where it does not, or cannot (any failure leaves the run as it is: the tunable
+// only saves time). Does nothing in a build with sanitizers, whose allocator is their own, or
+// outside glibc. Call it before the command prints or writes anything.
+void rerun_on_huge_pages(const std::vector<std::string>& inputs, char** argv);
 
 }  // namespace cs

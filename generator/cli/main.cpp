@@ -17,10 +17,17 @@ int run_command(const CommandLine& cl, char** argv) {
     if (cl.presets_cmd->parsed()) return cmd_presets();
     if (cl.render_cmd->parsed()) return cmd_render(cl.render);
     if (cl.apply_cmd->parsed()) return cmd_apply(cl.apply);
-    if (cl.check_cmd->parsed()) return cmd_check(cl.check);
-    if (cl.regrow_cmd->parsed()) return cmd_regrow(cl.regrow, cl.run);
+    // A large mesh: the whole run on huge pages, run again before it prints anything.
+    if (cl.check_cmd->parsed()) {
+        rerun_on_huge_pages(meshes_checked(cl.check), argv);
+        return cmd_check(cl.check);
+    }
+    if (cl.regrow_cmd->parsed()) {
+        rerun_on_huge_pages({regrown_input(cl.regrow)}, argv);
+        return cmd_regrow(cl.regrow, cl.run);
+    }
     if (cl.view_cmd->parsed()) return run_view_command(cl.view);
-    rerun_on_huge_pages(cl.generate.input, argv);  // a large mesh: the whole run on huge pages
+    rerun_on_huge_pages({cl.generate.input}, argv);
     return cmd_generate(cl.generate, cl.run);
 }
 

@@ -734,8 +734,9 @@ TEST(HugePages, TheTunableIsAddedToWhatTheEnvironmentHeld) {
 
 // A mesh file past kRerunFromBytes (a small part, and blank lines after it: an ASCII STL may end
 // so) runs again where the kernel leaves huge pages to the process (the loader, LD_DEBUG=files,
-// starts the program twice), with the same arguments: its outputs are those of the run that is not
-// run again (the tunable set already), byte for byte. A build with sanitizers never runs again.
+// starts the program twice), with the same arguments: generate, regrow and check each write or say
+// what a run that is not run again (the tunable set already) does, byte for byte. A build with
+// sanitizers never runs again.
 TEST(HugePages, ALargeInputRunAgainWritesWhatItWouldHave) {
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
     const bool sanitized = true;
@@ -744,9 +745,10 @@ TEST(HugePages, ALargeInputRunAgainWritesWhatItWouldHave) {
 #endif
     const bool madvise = contains(read_text("/sys/kernel/mm/transparent_hugepage/enabled"), "[madvise]");
     TempDir tmp;
+    const std::string large = tmp / "large.stl";
     {
         const Mesh m = cs::test::t_shape();
-        std::ofstream stl(tmp / "large.stl");
+        std::ofstream stl(large);
         stl << "solid tee\n";
         for (const Triangle& t : m.faces) {
             stl << "facet normal 0 0 0\nouter loop\n";
@@ -760,17 +762,50 @@ TEST(HugePages, ALargeInputRunAgainWritesWhatItWouldHave) {
         const std::string blank(1023, ' ');
         for (std::uintmax_t n = 0; n < kRerunFromBytes / 1024 + 1; ++n) stl << blank << '\n';
     }
-    ASSERT_GE(fs::file_size(tmp / "large.stl"), kRerunFromBytes);
+    ASSERT_GE(fs::file_size(large), kRerunFromBytes);
+    // The command's exit code and output, and how many times the loader started the program (its
+    // log apart, in files named <prefix>.<pid>: the one process, run again, appends to its own).
+    int calls = 0;
+    auto run_counted = [&](const std::string& env, const std::string& args) {
+        const std::string prefix = tmp / ("loader" + std::to_string(++calls));
+        CliRun r = cs::test::run(env + " LD_DEBUG=files LD_DEBUG_OUTPUT=" + quote(prefix) + " " + quote(cs::test::cli()) + " " + args);
+        std::size_t starts = 0;
+        for (const auto& e : fs::directory_iterator(tmp.path))
+            if (e.path().filename().string().starts_with(fs::path(prefix).filename().string() + ".")) {
+                const std::string log = read_text(e.path().string());
+                for (std::size_t at = 0; (at = log.find("initialize program:", at)) != std::string::npos; ++at) ++starts;
+            }
+        return std::tuple{r.code, starts, r.out};
+    };
+    const std::size_t twice = madvise && !sanitized ? 2u : 1u;
+    const std::string set = "GLIBC_TUNABLES=glibc.malloc.hugetlb=1";
     const std::string args = " --orient keep --no-timings --out ";
-    CliRun again = cs::test::run("LD_DEBUG=files " + quote(cs::test::cli()) + " " + quote(tmp / "large.stl") + args +
-                                 quote(tmp / "again"));
-    ASSERT_EQ(again.code, 0) << again.out;
-    std::size_t starts = 0;
-    for (std::size_t at = 0; (at = again.out.find("initialize program:", at)) != std::string::npos; ++at) ++starts;
-    EXPECT_EQ(starts, madvise && !sanitized ? 2u : 1u) << again.out;
-    CliRun once = cs::test::run("GLIBC_TUNABLES=glibc.malloc.hugetlb=1 " + quote(cs::test::cli()) + " " +
-                                quote(tmp / "large.stl") + args + quote(tmp / "once"));
-    ASSERT_EQ(once.code, 0) << once.out;
-    for (const char* file : {"large.scad", "large.supports.stl", "large.model.stl", "large.3mf"})
-        EXPECT_EQ(read_text(tmp / "again" + "/" + file), read_text(tmp / "once" + "/" + file)) << file;
+    const std::vector<std::string> outputs{"large.scad", "large.supports.stl", "large.model.stl", "large.3mf"};
+    {
+        const auto [code, starts, said] = run_counted("", quote(large) + args + quote(tmp / "again"));
+        ASSERT_EQ(code, 0) << said;
+        EXPECT_EQ(starts, twice) << said;
+        const auto [code1, starts1, said1] = run_counted(set, quote(large) + args + quote(tmp / "once"));
+        ASSERT_EQ(code1, 0) << said1;
+        EXPECT_EQ(starts1, 1u) << said1;
+        for (const std::string& file : outputs)
+            EXPECT_EQ(read_text(tmp / "again" + "/" + file), read_text(tmp / "once" + "/" + file)) << file;
+    }
+    {  // regrow reads the .scad's input, the large file
+        const auto [code, starts, said] = run_counted("", "regrow " + quote(tmp / "again" + "/large.scad") + " --out " + quote(tmp / "regrown"));
+        ASSERT_EQ(code, 0) << said;
+        EXPECT_EQ(starts, twice) << said;
+        for (const std::string& file : outputs)
+            EXPECT_EQ(read_text(tmp / "regrown" + "/" + file), read_text(tmp / "once" + "/" + file)) << file;
+    }
+    {  // check reads the large file as the model
+        const std::string args = "check --model " + quote(large) + " --supports " + quote(tmp / "once" + "/large.supports.stl");
+        const auto [code, starts, said] = run_counted("", args);
+        const auto [code1, starts1, said1] = run_counted(set, args);
+        EXPECT_EQ(starts, twice) << said;
+        EXPECT_EQ(starts1, 1u) << said1;
+        EXPECT_EQ(code, code1);
+        EXPECT_EQ(said, said1);
+        EXPECT_TRUE(contains(said, "coverage")) << said;
+    }
 }
