@@ -17,18 +17,6 @@ namespace cs {
 
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kSanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
-constexpr bool kSanitized = true;
-#else
-constexpr bool kSanitized = false;
-#endif
-#else
-constexpr bool kSanitized = false;
-#endif
-
 // The first kHugeHeap of the main heap, reserved at once (address space only) and marked
 // MADV_HUGEPAGE, takes 2 MB pages: igea (270k triangles) 39.5k -> 5.9k page faults and 2.1 -> 1.6
 // CPU-s on the bench machine, the same as with glibc.malloc.hugetlb=1. Where the kernel's
@@ -84,7 +72,7 @@ std::string with_huge_tunable(const char* tunables) {
 
 void rerun_on_huge_pages(const std::vector<std::string>& inputs, char** argv) {
 #if defined(__GLIBC__)
-    if (kSanitized) return;
+    if (!kMayRerun) return;
     std::uintmax_t bytes = 0;
     for (const std::string& input : inputs) {
         std::error_code ec;

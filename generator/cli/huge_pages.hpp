@@ -20,20 +20,38 @@
 //   }
 #pragma once
 
-#include <cstdint>
+#include <cstdint>  // and with it the C library's __GLIBC__
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace cs {
 
-// Inputs from this size (bytes of the file given) run again with the tunable. On the bench machine
+// Inputs from this size (bytes of the files a command reads, together) run again with the tunable. On the bench machine
 // (2026-12-07, wall s without -> with it, armadillo cut finer, benchmark scale): 5.2M triangles
 // (260 MB) 54.4 -> 26.6, 1.3M (65 MB) 9.9 -> 6.2, 470k (23 MB) 2.4 -> 2.2; igea (13 MB) and
 // nefertiti (5 MB) the same either way, as the heap's first 256 MB take huge pages already.
 // Running again costs what starting does (about 15 ms): under 1 % from here on, even for an
 // ASCII STL (about 130k triangles at this size).
 constexpr std::uintmax_t kRerunFromBytes = std::uintmax_t{32} << 20;
+
+// Whether this build may run again at all: glibc's, without sanitizers (whose allocator is their
+// own).
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+#if defined(__has_feature)
+#if !__has_feature(address_sanitizer) && !__has_feature(thread_sanitizer) && !__has_feature(memory_sanitizer)
+#define CS_MAY_RERUN 1
+#endif
+#else
+#define CS_MAY_RERUN 1
+#endif
+#endif
+#if defined(CS_MAY_RERUN)
+constexpr bool kMayRerun = true;
+#else
+constexpr bool kMayRerun = false;
+#endif
+#undef CS_MAY_RERUN
 
 // glibc's tunable that puts every allocation on huge pages.
 constexpr std::string_view kHugeTunable = "glibc.malloc.hugetlb=1";
@@ -55,8 +73,8 @@ std::string with_huge_tunable(const char* tunables);
 // Runs this program again (/proc/self/exe, the same arguments) with kHugeTunable where wants_rerun
 // says so for the files `inputs` together (those that cannot be read count nothing) and this
 // process; returns where it does not, or cannot (any failure leaves the run as it is: the tunable
-// only saves time). Does nothing in a build with sanitizers, whose allocator is their own, or
-// outside glibc. Call it before the command prints or writes anything.
+// only saves time). Does nothing where kMayRerun is false. Call it before the command prints or
+// writes anything.
 void rerun_on_huge_pages(const std::vector<std::string>& inputs, char** argv);
 
 }  // namespace cs

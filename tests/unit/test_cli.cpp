@@ -736,13 +736,8 @@ TEST(HugePages, TheTunableIsAddedToWhatTheEnvironmentHeld) {
 // so) runs again where the kernel leaves huge pages to the process (the loader, LD_DEBUG=files,
 // starts the program twice), with the same arguments: generate, regrow and check each write or say
 // what a run that is not run again (the tunable set already) does, byte for byte. A build with
-// sanitizers never runs again.
+// sanitizers never runs again (kMayRerun).
 TEST(HugePages, ALargeInputRunAgainWritesWhatItWouldHave) {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-    const bool sanitized = true;
-#else
-    const bool sanitized = false;
-#endif
     const bool madvise = contains(read_text("/sys/kernel/mm/transparent_hugepage/enabled"), "[madvise]");
     TempDir tmp;
     const std::string large = tmp / "large.stl";
@@ -777,7 +772,7 @@ TEST(HugePages, ALargeInputRunAgainWritesWhatItWouldHave) {
             }
         return std::tuple{r.code, starts, r.out};
     };
-    const std::size_t twice = madvise && !sanitized ? 2u : 1u;
+    const std::size_t twice = madvise && kMayRerun ? 2u : 1u;
     const std::string set = "GLIBC_TUNABLES=glibc.malloc.hugetlb=1";
     const std::string args = " --orient keep --no-timings --out ";
     const std::vector<std::string> outputs{"large.scad", "large.supports.stl", "large.model.stl", "large.3mf"};
