@@ -169,8 +169,8 @@ Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::str
     }
     // Each candidate's tree is independent: build them side by side. Each holds two copies of the
     // model (turned, then placed: about 50 bytes a triangle; the caller shares one index between
-    // poses on big models), so past 8 million triangles they take turns: memory stays bounded on
-    // huge scans, and the answer is the same either way.
+    // poses on scans and big models), so past 8 million triangles they take turns: memory stays
+    // bounded on huge scans, and the answer is the same either way.
     auto evaluate = [&](size_t i) {
         auto& c = o.candidates[i];
         Mesh rotated = mesh;

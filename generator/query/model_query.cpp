@@ -13,6 +13,7 @@
 #include <boost/iterator/function_output_iterator.hpp>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cfloat>
 #include <atomic>
 #include <memory>
@@ -598,6 +599,16 @@ bool ModelQuery::inside_uncached(const Vec3& p) const {
         if (r == 1 && votes != 1) break;
     }
     return votes >= 2;
+}
+
+double share_along_axes(const Mesh& mesh) {
+    std::size_t along = 0;
+    for (const Triangle& f : mesh.faces) {
+        const Vec3 n = cross(mesh.vertices[f[1]] - mesh.vertices[f[0]], mesh.vertices[f[2]] - mesh.vertices[f[0]]);
+        const double at_most = kAlongAxis * std::sqrt(dot(n, n));
+        along += at_most > 0 && (std::abs(n.x) <= at_most || std::abs(n.y) <= at_most || std::abs(n.z) <= at_most);
+    }
+    return mesh.faces.empty() ? 0.0 : double(along) / double(mesh.faces.size());
 }
 
 namespace {

@@ -87,6 +87,18 @@ private:
     bool inside_uncached(const Vec3& p) const;
 };
 
+// The share of `mesh`'s faces (0 to 1) that lie along its axes: faces whose normal's coordinate
+// across some axis is at most kAlongAxis of the normal's length (walls, floors and ceilings of a
+// CAD part). A question asked of a moved index (the constructor above) is turned, and turning
+// rounds: where faces lie along the axes, questions graze them (a vertical ray along a wall), and
+// such a question may be answered the other way than by an index of the moved mesh itself.
+// Example: share_along_axes(box) == 1; the same box turned by 30 degrees about x and y: 0.
+double share_along_axes(const Mesh& mesh);
+
+// A CAD face meant to be vertical or flat is within 1e-15 of it after turning; a scan's face comes
+// this near with odds of a few in a billion.
+constexpr double kAlongAxis = 1e-9;
+
 // Number of pairs of triangles that intersect (not counting neighbours sharing a vertex or edge),
 // stopping at `limit`.
 std::size_t count_self_intersections(const Mesh& mesh, std::size_t limit);

@@ -75,6 +75,29 @@ TEST(ModelQuery, MovedTwiceComposes) {
     expect_same_answers(own, second);
 }
 
+// A CAD part's faces lie along its axes; turned off the axes, none does; a face is along an axis
+// within kAlongAxis of its normal's length, no further.
+TEST(ModelQuery, ShareOfFacesAlongTheAxes) {
+    const Mesh t = test::t_shape();
+    EXPECT_EQ(share_along_axes(t), 1.0);
+    const Mesh turned = moved(t, rotation_to_down({0.3, -0.5, 0.8}), {4.5, -2.25, 7.0});
+    EXPECT_EQ(share_along_axes(turned), 0.0);
+    Mesh both = t;
+    for (const Triangle& f : turned.faces) {
+        const auto at = static_cast<std::uint32_t>(both.vertices.size());
+        for (int k = 0; k < 3; ++k) both.vertices.push_back(turned.vertices[f[k]]);
+        both.faces.push_back({at, at + 1, at + 2});
+    }
+    EXPECT_EQ(share_along_axes(both), 0.5);
+    // A face whose normal is (lean, 1, 1) times -100: along the x axis where lean is 1e-12 of
+    // it, not where it is 1e-6.
+    for (const auto& [lean, along] : {std::pair{1e-12, 1.0}, std::pair{1e-6, 0.0}}) {
+        const Mesh wall{{{0, 0, 0}, {0, 10, -10}, {10, -5 * lean, -5 * lean}}, {{0, 1, 2}}};
+        EXPECT_EQ(share_along_axes(wall), along) << "lean " << lean;
+    }
+    EXPECT_EQ(share_along_axes(Mesh{}), 0.0);
+}
+
 // A query remembers its answers: asked again, or after other questions, it answers bit for bit as
 // a fresh query asked once does.
 TEST(ModelQuery, AnswersDoNotDependOnWhatWasAskedBefore) {
