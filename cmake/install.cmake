@@ -33,7 +33,7 @@ if(NOT EXISTS ${CMAKE_BINARY_DIR}/${cs_data}/slicers)
   file(CREATE_LINK ${cs_slicers} ${CMAKE_BINARY_DIR}/${cs_data}/slicers SYMBOLIC)
 endif()
 
-install(TARGETS clever-support RUNTIME DESTINATION bin)
+install(TARGETS clever-support clever-support-view RUNTIME DESTINATION bin)
 # --compare slices through the benchmark's own harness, so its grams and minutes are the bench's.
 install(FILES ${cs_slicers}/slice.py ${cs_slicers}/cura_settings.py ${cs_slicers}/profile.json
         DESTINATION ${cs_data}/slicers)

@@ -1,8 +1,12 @@
 #include "view/view_cli.hpp"
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
+#include <unistd.h>
 
+#include "core/errors.hpp"
 #include "render/render.hpp"
 #include "view/view_server.hpp"
 
@@ -32,8 +36,21 @@ int run_view_command(const ViewArgs& a) {
     o.target = a.target;
     o.cli = this_executable();
     o.page_dir = data_dir() + "/view";
-    serve_view(o);
-    return 0;
+    const std::string server = (fs::path(o.cli).parent_path() / kViewServer).string();
+    const std::vector<std::string> args = view_server_args(o);
+    std::vector<char*> argv;
+    for (const std::string& s : args) argv.push_back(const_cast<char*>(s.c_str()));
+    argv.push_back(nullptr);
+    execv(server.c_str(), argv.data());
+    throw ExternalToolError("cannot start the page's server " + server + ": " + std::strerror(errno) +
+                            "; it is installed beside clever-support (cmake --install, or the .deb): reinstall");
+}
+
+std::vector<std::string> view_server_args(const ViewOptions& o) { return {kViewServer, o.target, o.cli, o.page_dir}; }
+
+std::optional<ViewOptions> view_options_from_args(int argc, const char* const* argv) {
+    if (argc != 4) return std::nullopt;
+    return ViewOptions{argv[1], argv[2], argv[3]};
 }
 
 }  // namespace cs

@@ -4,11 +4,13 @@
 // itself, in Chromium: tests/browser/view_test.mjs (ctest ViewInBrowser).
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "core/errors.hpp"
 #include "edit/scad_values.hpp"
 #include "support.hpp"
+#include "view/view_cli.hpp"
 #include "view/view_edit.hpp"
 #include "view/view_server.hpp"
 #include "view/view_state.hpp"
@@ -137,6 +139,49 @@ TEST(ViewFolder, FindsTheOneScadOfAnOutputFolderOrSaysWhatToGive) {
     auto r = run(quote(cli()) + " view " + quote(a.dir / "nothing"));
     EXPECT_EQ(r.code, 3) << r.out;
     EXPECT_NE(r.out.find("Give an output folder"), std::string::npos) << r.out;
+}
+
+// `view` runs in an executable of its own (view_cli.hpp): the server's command line reads back
+// as what `view` gave it, and nothing else is one.
+TEST(ViewServer, ItsCommandLineCarriesTheFolderTheCliAndThePage) {
+    const ViewOptions o{"out/m/", "/opt/cs/bin/clever-support", "/opt/cs/share/clever-support/view"};
+    const std::vector<std::string> args = view_server_args(o);
+    ASSERT_EQ(args.size(), 4u);
+    EXPECT_EQ(args[0], kViewServer);
+    std::vector<const char*> argv;
+    for (const std::string& a : args) argv.push_back(a.c_str());
+    const auto back = view_options_from_args(static_cast<int>(argv.size()), argv.data());
+    ASSERT_TRUE(back);
+    EXPECT_EQ(back->target, o.target);
+    EXPECT_EQ(back->cli, o.cli);
+    EXPECT_EQ(back->page_dir, o.page_dir);
+    EXPECT_FALSE(view_options_from_args(2, argv.data()));
+    // Started by hand, the server says what to run instead.
+    const std::string server = (std::filesystem::path(cli()).parent_path() / kViewServer).string();
+    auto r = run(quote(server) + " out/m/");
+    EXPECT_EQ(r.code, 2) << r.out;
+    EXPECT_NE(r.out.find("clever-support view FOLDER"), std::string::npos) << r.out;
+}
+
+// Every run but `view` starts without the web server's libraries (cpp-httplib, libssl; libcrypto
+// comes with libzip): the loader's own log of a run names none of them. `view` becomes its server: its errors are the
+// server's (ViewFolder's test above), and without the server beside it, it says so.
+TEST(ViewServer, OnlyViewLoadsTheWebServer) {
+    TempDir tmp;
+    const std::string log = tmp / "loader";
+    auto r = run("LD_DEBUG=files LD_DEBUG_OUTPUT=" + quote(log) + " " + quote(cli()) + " --version");
+    ASSERT_EQ(r.code, 0) << r.out;
+    std::string loaded;
+    for (const auto& e : std::filesystem::directory_iterator(tmp.path)) loaded += read_all(e.path().string());
+    EXPECT_NE(loaded.find("libstdc++"), std::string::npos) << "the loader's log was not read";
+    for (const char* lib : {"libcpp-httplib", "libssl", "libbrotli"})
+        EXPECT_EQ(loaded.find(lib), std::string::npos) << lib << " is loaded by every run";
+    const std::string alone = tmp / "clever-support";
+    std::filesystem::copy_file(cli(), alone);
+    std::filesystem::permissions(alone, std::filesystem::perms::owner_exec, std::filesystem::perm_options::add);
+    auto v = run(quote(alone) + " view " + quote(tmp / "nothing"));
+    EXPECT_EQ(v.code, 5) << v.out;
+    EXPECT_NE(v.out.find("cannot start the page's server"), std::string::npos) << v.out;
 }
 
 // The page's check judges a folder as `clever-support check FOLDER` does: after omitting a strut

