@@ -116,7 +116,9 @@ Orientation orient_by_support(const Mesh& scaled, const Params& p, const std::st
     OverhangOptions coarse_oo = overhang_options(coarse);
     coarse_oo.bridge_sampling = p.sampling_distance;  // holes judged at the run's spacing
     const bool big = scaled.faces.size() > kIndexOnceTriangles;
-    const bool scan = big || share_along_axes(scaled) <= kMostAlongAxes;
+    // Poses are judged only by the automatic search: no other run pays for the count.
+    const bool judged = parse_orient(orient).mode == OrientMode::automatic;
+    const bool scan = big || (judged && share_along_axes(scaled) <= kMostAlongAxes);
     // Built by the first pose that asks it: a CAD part pays none.
     std::once_flag indexed;
     std::unique_ptr<const ModelQuery> as_given;

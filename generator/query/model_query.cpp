@@ -607,7 +607,7 @@ bool ModelQuery::inside_uncached(const Vec3& p) const {
 double share_along_axes(const Mesh& mesh) {
     std::size_t along = 0;
     for (const Triangle& f : mesh.faces) {
-        const Vec3 n = cross(mesh.vertices[f[1]] - mesh.vertices[f[0]], mesh.vertices[f[2]] - mesh.vertices[f[0]]);
+        const Vec3 n = face_normal_unnormalized(mesh, f);
         const double at_most = kAlongAxis * std::sqrt(dot(n, n));
         along += at_most > 0 && (std::abs(n.x) <= at_most || std::abs(n.y) <= at_most || std::abs(n.z) <= at_most);
     }
