@@ -37,7 +37,6 @@ import shutil
 import statistics
 import subprocess
 import sys
-import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -53,6 +52,7 @@ import gcode_time  # noqa: E402
 import printed_bodies  # noqa: E402
 import slice as slice_stl  # noqa: E402
 import wall_time  # noqa: E402
+from measured_run import run_measured  # noqa: E402
 
 # How the report names the pose of a run (--orient).
 ORIENT_WORDS = {"keep": "orientation kept",
@@ -107,23 +107,12 @@ def log(msg):
 
 
 def cpu_seconds_of(cmd, timeout):
-    """Runs cmd; returns (CompletedProcess or None on timeout, user+sys CPU seconds of it and its children,
-    from /usr/bin/time: per command even when several run at once)."""
-    fd, tfile = tempfile.mkstemp(prefix="cs-handoff-time-")
-    os.close(fd)
-    wrap = ["/usr/bin/time", "-f", "%U %S", "-o", tfile] if os.path.exists("/usr/bin/time") else []
-    try:
-        p = subprocess.run(wrap + cmd, capture_output=True, text=True, timeout=timeout)
-    except subprocess.TimeoutExpired:
-        p = None
-    cpu = None
-    try:
-        u, s_ = open(tfile).read().strip().splitlines()[-1].split()
-        cpu = float(u) + float(s_)
-    except (OSError, ValueError, IndexError):
-        pass
-    os.remove(tfile)
-    return p, cpu
+    """Runs cmd; returns (CompletedProcess or None on timeout, user+sys CPU seconds of it and the
+    children it waited for: per command even when several run at once; measured_run.py)."""
+    m = run_measured(cmd, timeout)
+    if m.returncode is None:
+        return None, m.cpu_s
+    return subprocess.CompletedProcess(cmd, m.returncode, m.stdout, m.stderr), m.cpu_s
 
 
 def generate(args, name, path, scale, work, strategy, orient="keep"):

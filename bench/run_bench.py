@@ -32,6 +32,8 @@ import threading
 import time
 import traceback
 
+from measured_run import run_measured
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 SHARED = os.path.normpath(os.path.join(ROOT, "..", "shared", "models"))
@@ -183,32 +185,15 @@ def model_list(args, notes):
 # ----------------------------------------------------------------------------------------------
 
 def run_generator(args, model_path, scale, out_dir, extra, name_hint=None):
-    """One generator run under /usr/bin/time. Returns dict with report, wall, peak_kb, rc, cmd."""
+    """One generator run, measured alone (measured_run.py). Returns dict with report, wall, peak_kb, rc, cmd."""
     os.makedirs(out_dir, exist_ok=True)
-    mem_file = os.path.join(out_dir, "time.txt")
     cmd = [args.bin, model_path, "--scale", repr(scale), "--out", out_dir, "--json"] + extra
-    full = (["/usr/bin/time", "-f", "%M %U %S", "-o", mem_file] if os.path.exists("/usr/bin/time") else []) + cmd
     load = loadavg()
-    import resource
-    ru0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    t0 = time.perf_counter()
-    try:
-        p = subprocess.run(full, capture_output=True, text=True, timeout=args.gen_timeout)
-        rc, out, err = p.returncode, p.stdout, p.stderr
-    except subprocess.TimeoutExpired:
-        rc, out, err = "timeout", "", f"timed out after {args.gen_timeout} s"
-    wall = time.perf_counter() - t0
-    ru1 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    res = {"cmd": " ".join(cmd), "rc": rc, "wall_s": wall, "stderr": err.strip()[-2000:], "loadavg": load}
-    try:
-        f = open(mem_file).read().strip().splitlines()[-1].split()
-        res["peak_kb"], res["cpu_s"] = int(f[0]), float(f[1]) + float(f[2])
-    except Exception:
-        res["peak_kb"], res["cpu_s"] = None, None
-    if threading.active_count() == 1:
-        # /usr/bin/time prints CPU seconds to 10 ms; the children's rusage has microseconds (and
-        # counts only this run while no slice thread runs): small models need the precision.
-        res["cpu_s"] = (ru1.ru_utime - ru0.ru_utime) + (ru1.ru_stime - ru0.ru_stime)
+    m = run_measured(cmd, args.gen_timeout)
+    rc = "timeout" if m.returncode is None else m.returncode
+    out, err = m.stdout, (f"timed out after {args.gen_timeout} s" if m.returncode is None else m.stderr)
+    res = {"cmd": " ".join(cmd), "rc": rc, "wall_s": m.wall_s, "stderr": err.strip()[-2000:], "loadavg": load,
+           "peak_kb": m.peak_kb, "cpu_s": m.cpu_s}
     if rc == 0:
         try:
             res["report"] = json.loads(out)
@@ -279,23 +264,11 @@ def run_slice(args, slicer, support, stl):
            str(args.slice_timeout), stl]
     # CPU seconds (user + sys) of slice.py and the slicer it waits for: robust to other load on the
     # machine (CuraEngine lowers its own priority to nice 10, so its wall time suffers most).
-    import tempfile
-    fd, tfile = tempfile.mkstemp(prefix="cs-bench-time-")
-    os.close(fd)
-    wrap = ["/usr/bin/time", "-f", "%U %S", "-o", tfile] if os.path.exists("/usr/bin/time") else []
     load = loadavg()
-    try:
-        p = subprocess.run(wrap + cmd, capture_output=True, text=True, timeout=args.slice_timeout + 120)
-    except subprocess.TimeoutExpired:
+    p = run_measured(cmd, args.slice_timeout + 120)
+    if p.returncode is None:
         return {"error": "timeout", "cmd": " ".join(cmd)}
-    cpu = None
-    try:
-        u, s_ = open(tfile).read().strip().splitlines()[-1].split()
-        cpu = float(u) + float(s_)
-    except Exception:
-        pass
-    finally:
-        os.remove(tfile)
+    cpu = p.cpu_s
     if p.returncode != 0:
         return {"error": f"rc={p.returncode}: {p.stderr.strip()[-600:]}", "cmd": " ".join(cmd)}
     try:

@@ -11,7 +11,8 @@
 #   * bridge.stl + a filler block (the space under the deck) given as TWO STLs: they are merged
 #     into one mesh and must slice like a solid 50x10x8 box (pitfall 5), in both slicers;
 #   * gcode_time.py: its replay of every G-code above within 3 % of the slicer's own estimate, and
-#     its terms on a hand-made G-code.
+#     its terms on a hand-made G-code;
+#   * measured_run.py's own self-check (exit codes, a grandchild's CPU, a timeout).
 # Prints the numbers, then "N passed, N failed"; exits 1 if any check failed.
 set -uo pipefail
 
@@ -160,6 +161,10 @@ check(abs(t["extrusion_s"] - 100 / 60) < 1e-9 and abs(t["extrusion_s"] + t["acce
       % (t["extrusion_s"], t["accel_extrusion_s"], expect - 100 / 60))
 check(t["retraction_s"] > 2 / 25 and abs(t["travel_s"] - 10 / 120) < 1e-9,
       "gcode_time: retraction %.3f s (> 2 mm / 25 mm/s), travel %.3f s at feedrate" % (t["retraction_s"], t["travel_s"]))
+import subprocess
+m = subprocess.run([sys.executable, os.path.join(os.path.dirname(gcode_time.__file__), "..", "measured_run.py")],
+                   capture_output=True, text=True)
+check(m.returncode == 0, "measured_run.py (how the benchmarks count a run's CPU): " + m.stdout.strip())
 print("selftest: %d passed, %d failed" % (passed, failed))
 sys.exit(1 if failed else 0)
 EOF
