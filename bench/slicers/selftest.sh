@@ -12,7 +12,8 @@
 #     into one mesh and must slice like a solid 50x10x8 box (pitfall 5), in both slicers;
 #   * gcode_time.py: its replay of every G-code above within 3 % of the slicer's own estimate, and
 #     its terms on a hand-made G-code;
-#   * measured_run.py's own self-check (exit codes, a grandchild's CPU, a timeout).
+#   * measured_run.py's own self-check (exit codes, a grandchild's CPU, a timeout), and
+#     gcode_layer.py's count of a hand-made layer.
 # Prints the numbers, then "N passed, N failed"; exits 1 if any check failed.
 set -uo pipefail
 
@@ -162,6 +163,13 @@ check(abs(t["extrusion_s"] - 100 / 60) < 1e-9 and abs(t["extrusion_s"] + t["acce
 check(t["retraction_s"] > 2 / 25 and abs(t["travel_s"] - 10 / 120) < 1e-9,
       "gcode_time: retraction %.3f s (> 2 mm / 25 mm/s), travel %.3f s at feedrate" % (t["retraction_s"], t["travel_s"]))
 import subprocess
+import gcode_layer
+hand = os.path.join(work, "layer.gcode")
+with open(hand, "w") as f:  # two lines on one layer, a retraction and a travel between them
+    f.write("M82\nG92 E0\nG1 Z0.2 F600\nG1 X10 Y0 E1 F1800\nG1 E0.2\nG1 X20 Y5 F7200\nG1 E1\nG1 X30 Y5 E2 F1800\n")
+said = gcode_layer.draw(hand, 0.2, os.path.join(work, "layer.svg"))
+check(said.startswith("z = 0.2: 2 paths, 1 travels, 1 retractions") and os.path.getsize(os.path.join(work, "layer.svg")) > 0,
+      "gcode_layer: a hand-made layer drawn, " + said)
 m = subprocess.run([sys.executable, os.path.join(os.path.dirname(gcode_time.__file__), "..", "measured_run.py")],
                    capture_output=True, text=True)
 check(m.returncode == 0, "measured_run.py (how the benchmarks count a run's CPU): " + m.stdout.strip())
