@@ -14,6 +14,8 @@ import collections
 import gzip
 import sys
 
+from gcode_stats import Extruder
+
 SCALE = 12.0  # pixels per mm
 PALETTE = ["#d62728", "#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf"]
 
@@ -22,36 +24,25 @@ def moves(path):
     """(z, kind, type, x0, y0, x1, y1) per move in the XY plane or retraction: kind is 'extrude',
     'travel' or 'retract' (E going back with no XY move)."""
     opener = gzip.open if path.endswith(".gz") else open
-    x = y = z = e = 0.0
-    relative = False
+    x = y = z = 0.0
+    extruder = Extruder()
     typ = "?"
     with opener(path, "rt", errors="replace") as f:
         for raw in f:
             if raw.startswith(";TYPE:"):
                 typ = raw[6:].strip()
                 continue
-            code = raw.split(";", 1)[0].split()
-            if not code:
+            code = raw.split(";", 1)[0].strip()
+            if not code or extruder.sets_mode(code) or not code.startswith(("G0 ", "G1 ")):
                 continue
-            if code[0] == "M83":
-                relative = True
-            elif code[0] == "M82":
-                relative = False
-            elif code[0] == "G92":
-                e = next((float(w[1:]) for w in code[1:] if w[0] == "E"), e)
-            elif code[0] in ("G0", "G1"):
-                w = {t[0]: float(t[1:]) for t in code[1:] if t[0] in "XYZE"}
-                nx, ny, z = w.get("X", x), w.get("Y", y), w.get("Z", z)
-                de = 0.0
-                if "E" in w:
-                    de = w["E"] if relative else w["E"] - e
-                    e = e + w["E"] if relative else w["E"]
-                if (nx, ny) != (x, y):
-                    yield z, "extrude" if de > 0 else "travel", typ, x, y, nx, ny
-                elif de < 0:
-                    yield z, "retract", typ, x, y, x, y
-                x, y = nx, ny
-
+            w = {t[0]: t[1:] for t in code.split()[1:] if t[0] in "XYZE"}
+            nx, ny, z = float(w.get("X", x)), float(w.get("Y", y)), float(w.get("Z", z))
+            de = extruder.delta(w)
+            if (nx, ny) != (x, y):
+                yield z, "extrude" if de > 0 else "travel", typ, x, y, nx, ny
+            elif de < 0:
+                yield z, "retract", typ, x, y, x, y
+            x, y = nx, ny
 
 def draw(path, z_at, out):
     layer = [m for m in moves(path) if abs(m[0] - z_at) < 1e-3]
