@@ -105,27 +105,18 @@ def log(msg):
     print(time.strftime("%H:%M:%S"), msg, flush=True)
 
 
-def cpu_seconds_of(cmd, timeout):
-    """Runs cmd; returns (CompletedProcess or None on timeout, user+sys CPU seconds of it and the
-    children it waited for: per command even when several run at once; measured_run.py)."""
-    m = run_measured(cmd, timeout)
-    if m.returncode is None:
-        return None, m.cpu_s
-    return subprocess.CompletedProcess(cmd, m.returncode, m.stdout, m.stderr), m.cpu_s
-
-
 def generate(args, name, path, scale, work, strategy, orient="keep"):
     out = os.path.join(work, name, strategy)
     cmd = [args.bin, path, "--scale", repr(scale), "--orient", orient, "--strategy", strategy, "--out", out,
            "--json", "--no-timings"]
-    p, cpu = cpu_seconds_of(cmd, args.gen_timeout)
-    if p is None or p.returncode != 0:
-        return {"cmd": " ".join(cmd), "error": (p.stderr[-800:] if p else "timeout")}
+    p = run_measured(cmd, args.gen_timeout)
+    if p.returncode != 0:
+        return {"cmd": " ".join(cmd), "error": p.stderr[-800:] if p.returncode is not None else "timeout"}
     rep = json.loads(p.stdout)
     files = {suffix: os.path.getsize(os.path.join(out, name + suffix))
              for suffix in (".3mf", ".prusa.3mf", ".supported.stl", ".model.stl")
              if os.path.exists(os.path.join(out, name + suffix))}
-    return {"cmd": " ".join(cmd), "dir": out, "cpu_s": cpu, "file_bytes": files,
+    return {"cmd": " ".join(cmd), "dir": out, "cpu_s": p.cpu_s, "file_bytes": files,
             # What the slicers are given to print: the slabs' bridges (generator/ceilings/slabs.hpp)
             # are hollow under our Cura profile and absent from the .prusa.3mf.
             "support_volume_mm3": rep["supports"]["support_volume_mm3"] - rep["supports"].get("bridges_volume_mm3", 0),
@@ -147,8 +138,8 @@ def columns_in_pose_of(args, name, path, scale, tree):
 def check(args, name, gen):
     stem = os.path.join(gen["dir"], name)
     cmd = [args.bin, "check", "--model", stem + ".model.stl", "--supports", stem + ".supports.stl", "--json"]
-    p, _ = cpu_seconds_of(cmd, args.gen_timeout)
-    if p is None:
+    p = run_measured(cmd, args.gen_timeout)
+    if p.returncode is None:
         return {"ok": False, "error": "timeout"}
     try:
         j = json.loads(p.stdout)
@@ -199,12 +190,12 @@ def slice_route(args, key, name, tree, columns, work):
     if slicer == "prusa":  # e.g. perimeter_generator=classic: on every PrusaSlicer route, bare model included
         cmd += sum((["--set", kv] for kv in args.prusa_set), [])
     cmd += models
-    p, cpu = cpu_seconds_of(cmd, args.slice_timeout + 120)
-    if p is None or p.returncode != 0:
-        return {"error": (p.stderr.strip()[-600:] if p else "timeout"), "cmd": " ".join(cmd)}
+    p = run_measured(cmd, args.slice_timeout + 120)  # CPU of slice.py and the slicer it waits for
+    if p.returncode != 0:
+        return {"error": p.stderr.strip()[-600:] if p.returncode is not None else "timeout", "cmd": " ".join(cmd)}
     res = json.loads(p.stdout)
     out = {k: res[k] for k in ("grams", "print_time_s", "filament_mm3", "slice_seconds")}
-    out["cpu_s"] = cpu
+    out["cpu_s"] = p.cpu_s
     out["gcode"] = gcode_stats.parse(os.path.join(out_dir, "out.gcode"))
     out["time"] = gcode_time.split(os.path.join(out_dir, "out.gcode"), res["print_time_s"])
     if args.keep_gcode and os.path.exists(os.path.join(out_dir, "out.gcode")):
@@ -380,6 +371,17 @@ def target_words(limits, direction):
     return ", ".join(words) or "–"
 
 
+def met_words(summary, key, limits):
+    """Whether a set met a target as the tables say it: 'median no, 7/11' (the median, then how many
+    models meet the per-model limit), or '–'."""
+    words = []
+    if limits[0] is not None and key in summary["median_met"]:
+        words.append("median " + ("yes" if summary["median_met"][key] else "no"))
+    if limits[1] is not None and key in summary["met"]:
+        words.append(f"{summary['met'][key]}/{summary['n'][key]}")
+    return ", ".join(words) or "–"
+
+
 def dumps_records(value, depth=0, record_depth=4):
     """JSON with one record a line: objects open a level a line down to `record_depth` (the file, its
     models, a model, a section of it such as its slices), and every value deeper is written compactly on
@@ -464,14 +466,7 @@ def report_md(data):
         L.append("| **median** | | " + " | ".join(fmt(s["median"].get(k)) for k, _, _ in TARGETS) + " |")
         L.append("| **worst** | | " + " | ".join(fmt(s["worst"].get(k)) for k, _, _ in TARGETS) + " |")
         L.append("| **target** | | " + " | ".join(target_words(v, d) for _, v, d in TARGETS) + " |")
-        def met_words(k, limits):
-            words = []
-            if limits[0] is not None and k in s["median_met"]:
-                words.append("median " + ("yes" if s["median_met"][k] else "no"))
-            if limits[1] is not None and k in s["met"]:
-                words.append(f"{s['met'][k]}/{s['n'][k]}")
-            return ", ".join(words) or "–"
-        L.append("| **met** | | " + " | ".join(met_words(k, v) for k, v, _ in TARGETS) + " |")
+        L.append("| **met** | | " + " | ".join(met_words(s, k, v) for k, v, _ in TARGETS) + " |")
     L.append("\n## Generation and files\n")
     L.append("*Speed-up*: Cura tree's CPU overhead (CuraEngine with tree support − without supports, same run) over "
              "our generator's CPU (`clever-support`, every output written). Files: what the generator wrote.\n")
