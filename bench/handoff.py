@@ -53,7 +53,8 @@ import printed_bodies  # noqa: E402
 import slice as slice_stl  # noqa: E402
 import wall_time  # noqa: E402
 from measured_run import run_measured  # noqa: E402
-from targets import GENERATION_SPEEDUP, SUPPORT_FILAMENT_CURA, SUPPORT_FILAMENT_SNUG, SUPPORT_TIME  # noqa: E402
+from targets import (GENERATION_SPEEDUP, NO_TARGET, SUPPORT_FILAMENT_CURA, SUPPORT_FILAMENT_SNUG,  # noqa: E402
+                     SUPPORT_TIME)
 
 # How the report names the pose of a run (--orient).
 ORIENT_WORDS = {"keep": "orientation kept",
@@ -69,9 +70,8 @@ SETS = [("tuning", "Tuning set (shared models: the generator is tuned on these)"
         ("examples", "Examples (examples/models at 80 mm)"),
         ("other", "Other models")]
 
-# Sliced over mesh support volume (issue 11's 0.9) is reported without a target: issue 32 restated it
-# as "no body layer left out" (the dropped body layers below). The others: targets.py.
-NO_TARGET = (None, None)
+# Sliced over mesh support volume (issue 11's 0.9) is reported without a target (NO_TARGET): issue 32
+# restated it as "no body layer left out" (the dropped body layers below). The others: targets.py.
 
 # key -> (slicer, support mode, what is sliced)
 ROUTES = {

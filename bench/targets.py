@@ -4,6 +4,8 @@ each number; run_bench.py and handoff.py take them from here.
 Each target is (median limit, each model's limit); None where the issue sets none.
 """
 
+NO_TARGET = (None, None)  # a ratio the reports give without a target
+
 # Issue 32, minutes on mechanical parts: our support time over the better of the slicer's own
 # (Cura normal/tree; PrusaSlicer snug), per set of models.
 SUPPORT_TIME = (0.7, 1.0)

@@ -11,10 +11,9 @@ moves by type. Reads CuraEngine's and PrusaSlicer's G-code, absolute or relative
 in any browser; `chromium --headless --screenshot=OUT.png OUT.svg` makes a PNG of it.
 """
 import collections
-import gzip
 import sys
 
-from gcode_stats import Extruder
+from gcode_stats import Extruder, open_gcode
 
 SCALE = 12.0  # pixels per mm
 PALETTE = ["#d62728", "#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#17becf"]
@@ -23,11 +22,10 @@ PALETTE = ["#d62728", "#1f77b4", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e
 def moves(path):
     """(z, kind, type, x0, y0, x1, y1) per move in the XY plane or retraction: kind is 'extrude',
     'travel' or 'retract' (E going back with no XY move)."""
-    opener = gzip.open if path.endswith(".gz") else open
     x = y = z = 0.0
     extruder = Extruder()
     typ = "?"
-    with opener(path, "rt", errors="replace") as f:
+    with open_gcode(path) as f:
         for raw in f:
             if raw.startswith(";TYPE:"):
                 typ = raw[6:].strip()
@@ -43,6 +41,7 @@ def moves(path):
             elif de < 0:
                 yield z, "retract", typ, x, y, x, y
             x, y = nx, ny
+
 
 def draw(path, z_at, out):
     layer = [m for m in moves(path) if abs(m[0] - z_at) < 1e-3]

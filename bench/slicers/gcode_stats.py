@@ -61,6 +61,11 @@ class Extruder:
         return de
 
 
+
+def open_gcode(path):
+    """A G-code for reading as text, gzipped (bench/handoff.py --keep-gcode) or not."""
+    return gzip.open(path, "rt", errors="replace") if path.endswith(".gz") else open(path, errors="replace")
+
 def is_support(section):
     return section in SUPPORT_TYPES
 
@@ -78,9 +83,7 @@ def parse(path):
     retracted_since_support = False   # a retraction since the last extrusion, which was support
     travel = 0.0
     by_type = {}
-    opener = (lambda p: gzip.open(p, "rt", errors="replace")) if path.endswith(".gz") else (
-        lambda p: open(p, errors="replace"))
-    with opener(path) as f:
+    with open_gcode(path) as f:
         for raw in f:
             line = raw.strip()
             if line.startswith(";"):

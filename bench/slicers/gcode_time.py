@@ -23,13 +23,12 @@ The five add up to sim_s. The slicer's own estimate (slicer_s, from the G-code's
 sim_s by the residual (what the slicer models that this replay does not: Cura's per-layer planning,
 PrusaSlicer's firmware limits on E, rounding).
 """
-import gzip
 import json
 import math
 import re
 import sys
 
-from gcode_stats import Extruder
+from gcode_stats import Extruder, open_gcode
 
 # The profile's machine (profile.json) and each slicer's default for what the profile leaves open:
 # Cura's fdmprinter.def.json (machine_max_jerk_z 0.4, machine_max_jerk_e 5, feedrates unlimited);
@@ -47,8 +46,6 @@ _WORD = re.compile(r"([GXYZEFPS])(-?[0-9.]+)")
 _PRUSA_TIME = re.compile(r"estimated printing time \(normal mode\) = (.*)")
 
 
-def open_gcode(path):
-    return gzip.open(path, "rt", errors="replace") if path.endswith(".gz") else open(path, errors="replace")
 
 
 def prusa_seconds(text):
