@@ -128,8 +128,7 @@ std::vector<std::pair<Vec3, std::string>> candidate_directions(const Mesh& mesh)
 
 }  // namespace
 
-Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::string& mode,
-                               const std::function<PoseSupport(const Mesh& rotated, const Rotation& rotation)>& support,
+Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::string& mode, const PoseJudge& support,
                                size_t evaluate_best) {
     Orientation o;
     const OrientRequest request = parse_orient(mode);
@@ -171,23 +170,41 @@ Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::str
     // model (turned, then placed: about 50 bytes a triangle; the caller shares one index between
     // poses on scans and big models), so past 8 million triangles they take turns: memory stays
     // bounded on huge scans, and the answer is the same either way.
-    auto evaluate = [&](size_t i) {
-        auto& c = o.candidates[i];
-        Mesh rotated = mesh;
-        for (auto& v : rotated.vertices) v = c.rotation.apply(v);
-        c.support = support(rotated, c.rotation);
-        c.evaluated = true;
+    auto judge = [&](const std::vector<size_t>& which, PoseQuestion question) {
+        auto evaluate = [&](size_t k) {
+            auto& c = o.candidates[which[k]];
+            Mesh rotated = mesh;
+            for (auto& v : rotated.vertices) v = c.rotation.apply(v);
+            c.support = support(rotated, c.rotation, question);
+            c.evaluated = true;
+        };
+        if (mesh.faces.size() > 8'000'000)
+            for (size_t k = 0; k < which.size(); ++k) evaluate(k);
+        else
+            tbb::parallel_for(size_t(0), which.size(), evaluate);
     };
-    if (mesh.faces.size() > 8'000'000)
-        for (size_t i = 0; i < n_eval; ++i) evaluate(i);
-    else
-        tbb::parallel_for(size_t(0), n_eval, evaluate);
+    // A pose that needs no support at all (no overhang sample: a CAD part on a face that leaves no
+    // ceiling) beats every pose that needs some, whatever their volumes. Such poses have no
+    // overhang area, so those are judged first; once one needs nothing, the others are only asked
+    // whether they need support, and their trees (most of the search's time on small parts) are not
+    // grown. The choice is the one growing every tree would make (a tree's volume is above 0, and
+    // two poses tie within 1 % of the larger volume), but for a pose whose samples its tree all
+    // left out: its volume of 0 no longer beats a pose with nothing to hold.
+    std::vector<size_t> flat, rest;
+    for (size_t i = 0; i < n_eval; ++i) (o.candidates[i].overhang_area <= 0 ? flat : rest).push_back(i);
+    judge(flat, PoseQuestion::tree);
+    const bool bare = std::any_of(flat.begin(), flat.end(), [&](size_t i) { return !o.candidates[i].support.needs_support; });
+    judge(rest, bare ? PoseQuestion::needs_support : PoseQuestion::tree);
+
     size_t best = 0;
+    while (!o.candidates[best].support.grown) ++best;  // flat poses are all grown; without a bare one, all are
     std::string why = "overhang area";
-    for (size_t i = 1; i < n_eval; ++i) {
+    for (size_t i = best + 1; i < n_eval; ++i) {
         const auto &a = o.candidates[i].support, &b = o.candidates[best].support;
+        if (!a.grown || (a.needs_support && !b.needs_support)) continue;
         double tol = 0.01 * std::max(a.volume, b.volume);
-        if (a.volume < b.volume - tol) best = i, why = "support volume";
+        if (!a.needs_support && b.needs_support) best = i, why = "support volume";
+        else if (a.volume < b.volume - tol) best = i, why = "support volume";
         else if (std::abs(a.volume - b.volume) <= tol) {
             if (a.model_contacts < b.model_contacts) best = i, why = "model contacts";
             else if (a.model_contacts == b.model_contacts && a.height < b.height - 1e-6) best = i, why = "height";

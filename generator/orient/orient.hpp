@@ -27,17 +27,22 @@ struct Rotation {
 
 // What the tree built for one candidate pose.
 struct PoseSupport {
+    bool needs_support = true;  // the pose has overhang samples; false: nothing to hold, no tree
+    bool grown = true;          // false: only needs_support is known (see choose_orientation)
     double volume = 0;
     std::size_t model_contacts = 0;
     double height = 0;
 };
+
+// How much of a pose the orientation search asks about: its tree, or only whether it needs one.
+enum class PoseQuestion { tree, needs_support };
 
 struct OrientCandidate {
     Vec3 down;          // direction in input coordinates that becomes -Z
     std::string source; // "input", "axis", "hull"
     Rotation rotation;
     double overhang_area = 0;
-    bool evaluated = false;  // support was built for it
+    bool evaluated = false;  // `support` was asked about it (its tree grown unless support.grown is false)
     PoseSupport support;
 };
 
@@ -65,9 +70,12 @@ Rotation rotation_to_down(const Vec3& down);
 // `mode` is an --orient value (parse_orient: "auto", "keep" or "RX,RY,RZ"); throws ParameterError
 // for anything else.
 // `support` is called for the best few candidates in auto mode (the mesh rotated by `rotation`,
-// and that rotation -> what its tree needs), on several threads at once.
-Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::string& mode,
-                               const std::function<PoseSupport(const Mesh& rotated, const Rotation& rotation)>& support,
+// that rotation and the question -> what its tree needs), on several threads at once. A pose that
+// needs no support beats every pose that needs some, so once one is found the others are asked
+// PoseQuestion::needs_support only: `support` may then return {needs_support = true, grown = false}
+// without growing their trees (it must still grow a tree where the pose needs none).
+using PoseJudge = std::function<PoseSupport(const Mesh& rotated, const Rotation& rotation, PoseQuestion question)>;
+Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::string& mode, const PoseJudge& support,
                                std::size_t evaluate_best = 4);
 
 }  // namespace cs

@@ -1,6 +1,7 @@
 // Orientation: obvious least-support poses, rigid rotations, `keep`, determinism.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <tbb/global_control.h>
 
@@ -65,13 +66,14 @@ Mesh tee() { return extrude_xz({{-3, 0}, {3, 0}, {3, 20}, {15, 20}, {15, 24}, {-
 // Runs the real orientation search (overhang area, then support volume of real trees).
 Orientation orient(const Mesh& m, const std::string& mode = "auto") {
     Params p;
-    return choose_orientation(m, p, mode, [&](const Mesh& rotated, const Rotation&) {
+    return choose_orientation(m, p, mode, [&](const Mesh& rotated, const Rotation&, PoseQuestion) {
         Placement pl;
         Rotation id;
         Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
         const OverhangOptions oo = overhang_options(p);
-        auto s = build_supports(placed, sample_overhangs(placed, oo).samples, p);
-        return PoseSupport{s.volume, s.sized.tree.stats.model_contacts, bounding_box(placed).size().z};
+        const auto samples = sample_overhangs(placed, oo).samples;
+        auto s = build_supports(placed, samples, p);
+        return PoseSupport{!samples.empty(), true, s.volume, s.sized.tree.stats.model_contacts, bounding_box(placed).size().z};
     });
 }
 
@@ -88,6 +90,25 @@ double placed_overhang_area(const Mesh& m, const Rotation& r) {
     return sample_overhangs(placed, {50, 1.5, 0.2}).overhang_area;
 }
 
+// Like orient(), but answering the search's question: a pose asked only whether it needs support
+// grows no tree when it does. `trees` counts the trees grown.
+Orientation orient_answering(const Mesh& m, int& trees) {
+    Params p;
+    std::atomic<int> grown{0};
+    Orientation o = choose_orientation(m, p, "auto", [&](const Mesh& rotated, const Rotation&, PoseQuestion question) {
+        Placement pl;
+        Rotation id;
+        Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
+        const auto samples = sample_overhangs(placed, overhang_options(p)).samples;
+        if (!samples.empty() && question == PoseQuestion::needs_support) return PoseSupport{.needs_support = true, .grown = false};
+        ++grown;
+        auto s = build_supports(placed, samples, p);
+        return PoseSupport{!samples.empty(), true, s.volume, s.sized.tree.stats.model_contacts, bounding_box(placed).size().z};
+    });
+    trees = grown;
+    return o;
+}
+
 // Upright, a T's wings overhang. Plate down or lying on its flat side it needs nothing; of
 // those, the flat side is lower (the tie-break), so that is where it ends.
 TEST(Orient, TGoesWhereItNeedsNoSupport) {
@@ -97,6 +118,37 @@ TEST(Orient, TGoesWhereItNeedsNoSupport) {
     EXPECT_LT(placed_overhang_area(t, o.rotation), 1.0);
     EXPECT_NEAR(std::abs(o.rotation.apply({0, 1, 0}).z), 1, 1e-9) << "lying on its flat side";
     EXPECT_EQ(o.decided_by, "height");
+}
+
+// Once a pose needing no support is found, the poses that need some are not grown (their trees are
+// most of the search's time on a small part), and the choice is the one growing them all makes.
+TEST(Orient, PosesThatNeedSupportAreNotGrownOnceOneNeedsNone) {
+    // A trough (a U swept along y) needs nothing opening up or standing on either end; the fourth
+    // pose judged, on its side, holds a wall over its other wall. Given upside down, and as is.
+    const Mesh trough = extrude_xz({{-20, 0}, {20, 0}, {20, 25}, {17, 25}, {17, 3}, {-17, 3}, {-17, 25}, {-20, 25}}, -20, 20);
+    Rotation flip;
+    flip.m[1][1] = -1, flip.m[2][2] = -1;
+    for (const Mesh& m : {trough, rotated(trough, flip)}) {
+        int trees = 0;
+        const Orientation answered = orient_answering(m, trees);
+        const Orientation grown = orient(m);
+        std::size_t asked = 0, not_grown = 0;
+        for (const auto& c : answered.candidates) {
+            asked += c.evaluated;
+            if (c.evaluated && !c.support.grown) {
+                ++not_grown;
+                EXPECT_TRUE(c.support.needs_support);
+                EXPECT_GT(c.overhang_area, 0) << "a pose with no overhang area is always grown";
+            }
+        }
+        EXPECT_GT(not_grown, 0u) << "every pose's tree was grown";
+        EXPECT_EQ(trees, static_cast<int>(asked - not_grown));
+        EXPECT_FALSE(answered.candidates[answered.chosen].support.needs_support);
+        EXPECT_EQ(answered.chosen, grown.chosen);
+        EXPECT_EQ(answered.decided_by, grown.decided_by);
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) EXPECT_EQ(answered.rotation.m[r][c], grown.rotation.m[r][c]);
+    }
 }
 
 // An L lying on its long arm needs nothing; standing on its short arm its long arm overhangs.
