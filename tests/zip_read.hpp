@@ -24,8 +24,8 @@ struct ZipEntry {
     zip_uint64_t packed_size = 0;  // bytes in the archive
 };
 
-// Reads a ZIP archive held in memory back with libzip (the same library that writes it, but its
-// reading side: every entry is inflated and checked against its CRC).
+// Reads a ZIP archive held in memory back with libzip (not the library that writes it, minizip:
+// every entry is inflated and checked against its CRC, the archive's consistency checked too).
 inline std::map<std::string, ZipEntry> unzip_entries(const std::string& z) {
     std::map<std::string, ZipEntry> out;
     zip_error_t err;

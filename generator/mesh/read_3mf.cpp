@@ -1,7 +1,7 @@
 #include "mesh/read_3mf.hpp"
 
 #include <expat.h>
-#include <zip.h>
+#include <minizip/unzip.h>
 
 #include <algorithm>
 #include <array>
@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
+#include "mesh/zip_memory.hpp"
 
 namespace cs {
 namespace {
@@ -125,31 +126,35 @@ std::string key_of(const std::string& part, std::string_view id) { return part +
 
 // ---------------------------------------------------------------- ZIP
 
-struct ZipCloser {
-    void operator()(zip_t* z) const { zip_discard(z); }
-};
-using Zip = std::unique_ptr<zip_t, ZipCloser>;
-
-Zip open_zip(std::string_view bytes, const std::string& name) {
-    zip_error_t err;
-    zip_error_init(&err);
-    zip_source_t* src = zip_source_buffer_create(bytes.data(), bytes.size(), 0, &err);
-    zip_t* z = src ? zip_open_from_source(src, ZIP_RDONLY, &err) : nullptr;
-    if (!z) {
-        std::string why = zip_error_strerror(&err);
-        if (src) zip_source_free(src);
-        zip_error_fini(&err);
-        fail(name, "is not a 3MF file: it is not a ZIP archive, which every 3MF is (libzip: " + why + ")",
-             "Check that the download or export finished; if it is another format, give it that format's extension.");
+// An archive open for reading, with the bytes it reads from (minizip reads through memory_zip_io).
+struct Zip {
+    MemoryZipFile file;
+    unzFile z = nullptr;
+    Zip() = default;
+    Zip(const Zip&) = delete;
+    Zip& operator=(const Zip&) = delete;
+    ~Zip() {
+        if (z) unzClose(z);
     }
-    zip_error_fini(&err);
-    return Zip(z);
+};
+
+std::unique_ptr<Zip> open_zip(std::string_view bytes, const std::string& name) {
+    auto zip = std::make_unique<Zip>();
+    zip->file.bytes.assign(bytes);
+    zlib_filefunc64_def io = memory_zip_io(zip->file);
+    zip->z = unzOpen2_64(name.c_str(), &io);
+    if (!zip->z)
+        fail(name, "is not a 3MF file: it is not a ZIP archive, which every 3MF is (no readable ZIP directory)",
+             "Check that the download or export finished; if it is another format, give it that format's extension.");
+    return zip;
 }
 
-// The entry's index, or -1. Part names are case-insensitive in OPC packages.
-zip_int64_t find_entry(zip_t* z, const std::string& part) {
-    zip_int64_t i = zip_name_locate(z, part.c_str(), 0);
-    return i >= 0 ? i : zip_name_locate(z, part.c_str(), ZIP_FL_NOCASE);
+// Makes `part` the archive's current entry; false if there is none. Part names are
+// case-insensitive in OPC packages: an exact match first, then one in any case.
+bool find_entry(Zip& zip, const std::string& part) {
+    constexpr int kCaseSensitive = 1, kCaseInsensitive = 2;  // unzLocateFile's iCaseSensitivity
+    return unzLocateFile(zip.z, part.c_str(), kCaseSensitive) == UNZ_OK ||
+           unzLocateFile(zip.z, part.c_str(), kCaseInsensitive) == UNZ_OK;
 }
 
 // Streams one entry's inflated bytes to `sink` in chunks, charging them to `budget` (the bytes
@@ -160,42 +165,42 @@ struct Budget {
     std::size_t limit;  // in all
 };
 
+// The current entry (find_entry), streamed; its CRC is checked once it is all read.
 template <class Sink>
-void read_entry(zip_t* z, zip_int64_t index, const std::string& part, const std::string& name, Budget& budget,
-                Sink&& sink) {
+void read_entry(Zip& zip, const std::string& part, const std::string& name, Budget& budget, Sink&& sink) {
     const std::string bomb = fmt::format(
         "unpacks to more than {} of XML in all (a ZIP bomb, or a model far larger than any printer's)",
         budget.limit >= (1u << 20) ? std::to_string(budget.limit >> 20) + " MB" : std::to_string(budget.limit) + " bytes");
-    zip_stat_t st;
-    zip_stat_init(&st);
-    if (zip_stat_index(z, static_cast<zip_uint64_t>(index), 0, &st) == 0 && (st.valid & ZIP_STAT_SIZE) &&
-        st.size > budget.left)
+    unz_file_info64 info{};
+    if (unzGetCurrentFileInfo64(zip.z, &info, nullptr, 0, nullptr, 0, nullptr, 0) != UNZ_OK)
+        fail(name, "cannot unpack " + part + " (damaged ZIP directory)", kReexport);
+    if (info.uncompressed_size > budget.left)
         fail(name, part + " " + bomb, "Check where the file came from; simplify the model before exporting it.");
-    zip_file_t* f = zip_fopen_index(z, static_cast<zip_uint64_t>(index), 0);
-    if (!f) fail(name, "cannot unpack " + part + ": " + zip_strerror(z), kReexport);
+    if (const int rc = unzOpenCurrentFile(zip.z); rc != UNZ_OK)
+        fail(name, fmt::format("cannot unpack {} (damaged or unsupported ZIP entry: minizip error {})", part, rc),
+             kReexport);
+    struct Closer {  // an entry left open is closed whichever way this ends
+        unzFile z;
+        ~Closer() {
+            if (z) unzCloseCurrentFile(z);
+        }
+    } closer{zip.z};
     std::vector<char> buf(1 << 20);
     for (;;) {
-        zip_int64_t n = zip_fread(f, buf.data(), buf.size());
-        if (n < 0) {
-            std::string why = zip_file_strerror(f);
-            zip_fclose(f);
-            fail(name, "cannot unpack " + part + " (damaged ZIP: " + why + ")", kReexport);
-        }
-        if (static_cast<std::size_t>(n) > budget.left) {
-            zip_fclose(f);
+        const int n = unzReadCurrentFile(zip.z, buf.data(), static_cast<unsigned>(buf.size()));
+        if (n < 0) fail(name, fmt::format("cannot unpack {} (damaged ZIP: minizip error {})", part, n), kReexport);
+        if (static_cast<std::size_t>(n) > budget.left)
             fail(name, part + " " + bomb, "Check where the file came from; simplify the model before exporting it.");
-        }
         budget.left -= static_cast<std::size_t>(n);
         const bool last = n == 0;
-        try {
-            sink(buf.data(), static_cast<std::size_t>(n), last);
-        } catch (...) {
-            zip_fclose(f);
-            throw;
+        if (last) {
+            closer.z = nullptr;
+            if (unzCloseCurrentFile(zip.z) == UNZ_CRCERROR)
+                fail(name, "cannot unpack " + part + " (damaged ZIP: its CRC does not match)", kReexport);
         }
+        sink(buf.data(), static_cast<std::size_t>(n), last);
         if (last) break;
     }
-    zip_fclose(f);
 }
 
 // ---------------------------------------------------------------- XML (expat, namespace-aware)
@@ -275,9 +280,8 @@ private:
 };
 
 // Streams one ZIP entry through an XmlStream; throws the stream's problem as an InputError.
-void parse_entry(zip_t* z, zip_int64_t index, const std::string& part, const std::string& name, Budget& budget,
-                 XmlStream& xml) {
-    read_entry(z, index, part, name, budget, [&](const char* data, std::size_t n, bool last) {
+void parse_entry(Zip& zip, const std::string& part, const std::string& name, Budget& budget, XmlStream& xml) {
+    read_entry(zip, part, name, budget, [&](const char* data, std::size_t n, bool last) {
         std::string problem = xml.feed(data, n, last);
         if (!problem.empty()) fail(name, problem, kReexport);
     });
@@ -300,12 +304,11 @@ struct RelsReader {
 };
 
 // The root model part: the relationship of type .../3dmodel, else the usual name.
-std::string root_model_part(zip_t* z, const std::string& name, Budget& budget) {
-    zip_int64_t rels = find_entry(z, "_rels/.rels");
-    if (rels >= 0) {
+std::string root_model_part(Zip& zip, const std::string& name, Budget& budget) {
+    if (find_entry(zip, "_rels/.rels")) {
         RelsReader reader;
         XmlStream xml("_rels/.rels", &reader, RelsReader::start, RelsReader::end);
-        parse_entry(z, rels, "_rels/.rels", name, budget, xml);
+        parse_entry(zip, "_rels/.rels", name, budget, xml);
         if (!reader.model_part.empty()) return reader.model_part;
     }
     return "3D/3dmodel.model";
@@ -420,17 +423,16 @@ struct ModelReader {
     static void end(void* self, std::string_view e) { static_cast<ModelReader*>(self)->on_end(e); }
 };
 
-void read_model_part(zip_t* z, const std::string& part, bool root, Package& pkg, const std::string& name,
+void read_model_part(Zip& zip, const std::string& part, bool root, Package& pkg, const std::string& name,
                      Budget& budget) {
-    zip_int64_t index = find_entry(z, part);
-    if (index < 0)
+    if (!find_entry(zip, part))
         fail(name, root ? "has no 3D model part (" + part + "): it is a ZIP, but not a 3MF model"
                         : "a component refers to the model part " + part + ", which the package does not contain",
              kReexport);
     ModelReader reader{pkg, part, root};
     XmlStream xml(part, &reader, ModelReader::start, ModelReader::end);
     reader.xml = &xml;
-    parse_entry(z, index, part, name, budget, xml);
+    parse_entry(zip, part, name, budget, xml);
 }
 
 // ---------------------------------------------------------------- placing
@@ -526,19 +528,19 @@ std::string ThreeMfContents::summary() const {
 
 Mesh parse_3mf(std::string_view bytes, const std::string& name, ThreeMfContents* contents,
                std::size_t max_unpacked_bytes) {
-    Zip zip = open_zip(bytes, name);
+    const std::unique_ptr<Zip> zip = open_zip(bytes, name);
     Budget budget{max_unpacked_bytes, max_unpacked_bytes};
     Package pkg;
     pkg.unit = "millimeter";
-    const std::string root = root_model_part(zip.get(), name, budget);
+    const std::string root = root_model_part(*zip, name, budget);
     pkg.parts_named.insert(root);
-    read_model_part(zip.get(), root, true, pkg, name, budget);
+    read_model_part(*zip, root, true, pkg, name, budget);
     ThreeMfContents what;
     what.model_parts = 1;
     while (!pkg.parts_to_read.empty()) {
         std::string part = pkg.parts_to_read.front();
         pkg.parts_to_read.pop_front();
-        read_model_part(zip.get(), part, false, pkg, name, budget);
+        read_model_part(*zip, part, false, pkg, name, budget);
         ++what.model_parts;
     }
     const double scale = millimetres_per_unit(pkg.unit, name);

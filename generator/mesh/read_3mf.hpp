@@ -9,7 +9,7 @@
 // is printed. Objects of type "support" or "other" (a slicer's own supports, helpers) are left out.
 // A file without build items places each object that no other object uses as a component.
 //
-// Libraries: libzip unpacks, expat parses the XML (streamed: a big scan's model part is never held
+// Libraries: minizip unpacks (from memory: mesh/zip_memory.hpp), expat parses the XML (streamed: a big scan's model part is never held
 // as a document tree). Decompression is bounded: a part whose declared size, or whose actual
 // inflated bytes, pass `max_unpacked_bytes` in total is rejected before it fills the memory (a ZIP
 // bomb). Every problem is an InputError that names the file, says what is wrong and what to do.

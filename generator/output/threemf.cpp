@@ -9,12 +9,13 @@
 #include <fmt/compile.h>
 #include <fmt/format.h>
 #include <iterator>
+#include <minizip/zip.h>
 #include <stdexcept>
-#include <zip.h>
 
 #include "core/errors.hpp"
 #include "core/rules.hpp"
 #include "mesh/weld.hpp"
+#include "mesh/zip_memory.hpp"
 
 namespace cs {
 namespace {
@@ -23,9 +24,10 @@ namespace {
 // packs it to 1.85 MB in 0.08 s, the default level 6 to 1.51 MB in 0.22 s. Both are far below the
 // STL (5.0 MB); the generator's speed counts for more than the last 20 % of size.
 constexpr int kDeflateLevel = 1;
-// Every entry's modification time is fixed (2000-01-01 12:00 UTC) so the same input gives the same
-// bytes. ZIP stores it as a local DOS time, so the bytes match within one time zone.
-constexpr time_t kFixedMtime = 946728000;
+// Every entry's modification time is fixed, 2000-01-01 12:00, so the same input gives the same
+// bytes. ZIP stores a DOS date and time with no time zone: written as they are, the bytes are the
+// same in every time zone.
+constexpr tm_zip kFixedTime = {0, 0, 12, 1, 0, 2000};  // sec, min, hour, day, month from 0, year
 
 std::string xml_escape(const std::string& text) {
     std::string out;
@@ -237,55 +239,32 @@ constexpr double kPrusaStrutLineOverWall = 1.1;
 }  // namespace
 
 std::string encode_zip(std::vector<std::pair<std::string, std::string>> entries) {
-    // libzip writes the container into a growing memory buffer; the entries' data must outlive
-    // zip_close, which is when libzip deflates them.
-    auto fail = [](const char* what, zip_error_t* err) {
-        std::string msg = fmt::format("3MF packaging failed ({}): {}", what, zip_error_strerror(err));
-        zip_error_fini(err);
-        throw OutputError(msg);
+    MemoryZipFile file;
+    zlib_filefunc64_def io = memory_zip_io(file);
+    zipFile archive = zipOpen2_64("3MF package", APPEND_STATUS_CREATE, nullptr, &io);
+    if (!archive) throw OutputError("3MF packaging failed (open)");
+    auto fail = [&](const std::string& what, int code) {
+        zipClose(archive, nullptr);
+        throw OutputError(fmt::format("3MF packaging failed ({}): minizip error {}", what, code));
     };
-    zip_error_t err;
-    zip_error_init(&err);
-    zip_source_t* buffer = zip_source_buffer_create(nullptr, 0, 0, &err);
-    if (!buffer) fail("buffer", &err);
-    zip_t* archive = zip_open_from_source(buffer, ZIP_TRUNCATE, &err);
-    if (!archive) {
-        zip_source_free(buffer);
-        fail("open", &err);
-    }
-    zip_source_keep(buffer);  // still ours after zip_close, so the result can be read back
-    // After the archive is open, libzip keeps the error in it: take it, drop everything, throw.
-    auto fail_archive = [&](const char* what) {
-        zip_error_set(&err, zip_error_code_zip(zip_get_error(archive)), zip_error_code_system(zip_get_error(archive)));
-        zip_discard(archive);
-        zip_source_free(buffer);
-        fail(what, &err);
-    };
+    zip_fileinfo info{};
+    info.tmz_date = kFixedTime;
     for (const auto& [name, data] : entries) {
-        zip_source_t* src = zip_source_buffer(archive, data.data(), data.size(), 0);
-        if (!src) fail_archive(name.c_str());
-        zip_int64_t index = zip_file_add(archive, name.c_str(), src, ZIP_FL_ENC_UTF_8);
-        if (index < 0) {
-            zip_source_free(src);
-            fail_archive(name.c_str());
-        }
-        if (zip_set_file_compression(archive, static_cast<zip_uint64_t>(index), ZIP_CM_DEFLATE, kDeflateLevel) < 0 ||
-            zip_file_set_mtime(archive, static_cast<zip_uint64_t>(index), kFixedMtime, 0) < 0)
-            fail_archive(name.c_str());
+        const int zip64 = data.size() >= 0xffffffffu;  // ZIP64 only where an entry needs it
+        int rc = zipOpenNewFileInZip3_64(archive, name.c_str(), &info, nullptr, 0, nullptr, 0, nullptr, Z_DEFLATED,
+                                         kDeflateLevel, 0, -MAX_WBITS, DEF_MEM_LEVEL, Z_DEFAULT_STRATEGY, nullptr, 0,
+                                         zip64);
+        if (rc != ZIP_OK) fail(name, rc);
+        // zipWriteInFileInZip takes an unsigned int length: big parts go in pieces.
+        constexpr std::size_t kPiece = 1u << 30;
+        for (std::size_t at = 0; at < data.size() && rc == ZIP_OK; at += kPiece)
+            rc = zipWriteInFileInZip(archive, data.data() + at, static_cast<unsigned>(std::min(kPiece, data.size() - at)));
+        if (rc == ZIP_OK) rc = zipCloseFileInZip(archive);
+        if (rc != ZIP_OK) fail(name, rc);
     }
-    if (zip_close(archive) < 0) fail_archive("write");
-    std::string out;
-    zip_stat_t st;
-    if (zip_source_stat(buffer, &st) == 0 && zip_source_open(buffer) == 0) {
-        out.resize(static_cast<size_t>(st.size));
-        zip_int64_t got = zip_source_read(buffer, out.data(), st.size);
-        zip_source_close(buffer);
-        if (got != static_cast<zip_int64_t>(st.size)) out.clear();
-    }
-    zip_source_free(buffer);
-    zip_error_fini(&err);
-    if (out.empty()) throw OutputError("3MF packaging failed: the archive could not be read back from memory");
-    return out;
+    if (const int rc = zipClose(archive, nullptr); rc != ZIP_OK)
+        throw OutputError(fmt::format("3MF packaging failed (write): minizip error {}", rc));
+    return std::move(file.bytes);
 }
 
 const Settings& cura_support_mesh_settings() {

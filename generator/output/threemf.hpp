@@ -1,6 +1,6 @@
 // 3MF (3D Manufacturing Format) output: the model and its supports in the forms the two slicers we
 // target read as "print these struts as support" (see shared notes slicer-handoff.md). A 3MF file
-// is a ZIP package of XML parts; ours is packed by libzip with deflate (a scan's 3MF is about a
+// is a ZIP package of XML parts; ours is packed by minizip (zlib's) with deflate (a scan's 3MF is about a
 // third of its STL).
 //
 // One file cannot serve both slicers: Cura reads one mesh object as one model (its per-object
@@ -106,8 +106,8 @@ std::string encode_3mf_cura(const std::string& name, const std::vector<NamedMesh
 // with each part's settings.
 std::string encode_3mf_prusa(const std::string& name, const std::vector<NamedMesh>& parts);
 
-// A ZIP archive of the given (name, content) entries, each deflated, written by libzip.
-// Entries are taken by value: move large ones in. Throws OutputError if libzip fails.
+// A ZIP archive of the given (name, content) entries, each deflated, written by minizip in memory.
+// Entries are taken by value: move large ones in. Throws OutputError if minizip fails.
 std::string encode_zip(std::vector<std::pair<std::string, std::string>> entries);
 
 }  // namespace cs

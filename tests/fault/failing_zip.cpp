@@ -1,6 +1,6 @@
-// A fault to inject: LD_PRELOADed into the CLI, libzip's zip_close fails as it would if it could
-// not deflate or pack the archive (tests/unit/test_cli.cpp, ThreeMfThatFailsToEncode...). Every
-// other libzip function is the real one.
-#include <zip.h>
+// A fault to inject: LD_PRELOADed into the CLI, minizip's zipClose fails as it would if it could
+// not write the archive's directory (tests/unit/test_cli.cpp, ThreeMfThatFailsToEncode...). Every
+// other minizip function is the real one.
+#include <minizip/zip.h>
 
-extern "C" int zip_close(zip_t*) { return -1; }
+extern "C" int zipClose(zipFile, const char*) { return ZIP_ERRNO; }

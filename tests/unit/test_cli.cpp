@@ -373,7 +373,7 @@ TEST(Cli, UnwritableOutputDirectoryFailsWithExitSix) {
 }
 
 TEST(Cli, ThreeMfThatFailsToEncodeLeavesNothingAndExitsSix) {
-    // libzip fails to pack (tests/fault/failing_zip.cpp, preloaded): the STLs before the 3MF were
+    // minizip fails to pack (tests/fault/failing_zip.cpp, preloaded): the STLs before the 3MF were
     // already written to temporaries; none may be left, and the failure is an output error.
     TempDir tmp;
     std::string input = write_good_mesh(tmp);
