@@ -68,7 +68,7 @@ install(FILES ${PROJECT_SOURCE_DIR}/docs/clever-support.1 DESTINATION share/man/
 install(FILES ${PROJECT_SOURCE_DIR}/README.md ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION share/doc/clever-support)
 
 # cpack (run in build/) writes clever-support_<version>_<arch>.deb. Library dependencies come from
-# dpkg-shlibdeps (libcgal is header-only; gmp, mpfr, tbb, fmt, minizip, expat, libstdc++ are found from
+# dpkg-shlibdeps (libcgal is header-only; gmp, mpfr, tbb, fmt, minizip, libdeflate, expat, libstdc++ are found from
 # the binary); the tools it runs are declared here: Node.js for the OpenSCAD runner, and Debian's
 # openscad + xvfb for --preview pictures (recommended: --render works without them).
 set(CPACK_GENERATOR DEB)

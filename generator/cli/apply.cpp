@@ -80,8 +80,11 @@ int cmd_apply(const ApplyArgs& a) {
         const double printed = signed_volume(supports) - bridges_volume(built.walls);
         std::printf("applied %s (rendered in %.1f s): rewrote %s/%s.supports.stl, .supported.stl, .3mf, .prusa.3mf\n",
                     a.scad.c_str(), rr.seconds, dir.c_str(), name.c_str());
+        // check judges supports.stl solid by solid (a top, a bottom, a length, a width): OpenSCAD's
+        // union has fused them, so its verdicts on this folder would be wrong (README: apply).
         std::printf("  supports now %.2f g (%.0f mm^3); the report still describes the supports as grown, and\n"
-                    "  solids that touch are one solid now (as check judges them)\n",
+                    "  solids that touch are one solid now: check cannot judge this folder (it judges solid by\n"
+                    "  solid); check the folder as generated, or regrow the .scad and check that\n",
                     printed / 1000.0 * p.filament_density, printed);
     }
     return kExitOk;

@@ -1,7 +1,7 @@
 // 3MF (3D Manufacturing Format) output: the model and its supports in the forms the two slicers we
 // target read as "print these struts as support" (see shared notes slicer-handoff.md). A 3MF file
-// is a ZIP package of XML parts; ours is packed by minizip (zlib's) with deflate (a scan's 3MF is about a
-// third of its STL).
+// is a ZIP package of XML parts; ours is deflated by libdeflate and packed by minizip (a scan's
+// 3MF is about a quarter of its STL).
 //
 // One file cannot serve both slicers: Cura reads one mesh object as one model (its per-object
 // settings cannot address part of it), and PrusaSlicer drops separate objects onto the bed one by
@@ -106,7 +106,7 @@ std::string encode_3mf_cura(const std::string& name, const std::vector<NamedMesh
 // with each part's settings.
 std::string encode_3mf_prusa(const std::string& name, const std::vector<NamedMesh>& parts);
 
-// A ZIP archive of the given (name, content) entries, each deflated, written by minizip in memory.
+// A ZIP archive of the given (name, content) entries, each deflated (libdeflate), written by minizip in memory.
 // Entries are taken by value: move large ones in. Throws OutputError if minizip fails.
 std::string encode_zip(std::vector<std::pair<std::string, std::string>> entries);
 

@@ -644,6 +644,8 @@ TEST(ScadEdit, ApplyKeepsTheSlabsBridgesOutOfPrusaSlicersFileAndTheGrams) {
     ASSERT_TRUE(std::regex_search(r.out, grams, std::regex(R"(supports now ([0-9.]+) g)"))) << r.out;
     EXPECT_LE(std::stod(grams[1]), printed_g + 0.01) << r.out;
     EXPECT_GE(std::stod(grams[1]), 0.9 * printed_g) << r.out;
+    // check judges solid by solid; the union fused them (README: "check after apply fails").
+    EXPECT_NE(r.out.find("check cannot judge this folder"), std::string::npos) << r.out;
 }
 
 TEST(ScadEdit, ApplyBringsATweakIntoTheSlicerFiles) {

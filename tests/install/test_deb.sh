@@ -14,7 +14,7 @@ trap 'rm -rf "$tmp"' EXIT
 (cd "$build" && cpack -G DEB -B "$tmp/pkg" >"$tmp/cpack.log" 2>&1) || { cat "$tmp/cpack.log"; fail "cpack failed"; }
 deb=$(ls "$tmp"/pkg/clever-support_*.deb)
 depends=$(dpkg-deb -f "$deb" Depends)
-for d in "nodejs (>= 18)" libminizip1 libexpat1 libtbb12 libfmt9 libstdc++6; do
+for d in "nodejs (>= 18)" libminizip1 libdeflate0 libexpat1 libtbb12 libfmt9 libstdc++6; do
     [[ "$depends" == *"$d"* ]] || fail "Depends does not name $d: $depends"
 done
 [[ "$(dpkg-deb -f "$deb" Recommends)" == *openscad* ]] || fail "the .deb does not recommend openscad"
