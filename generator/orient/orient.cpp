@@ -183,28 +183,45 @@ Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::str
         else
             tbb::parallel_for(size_t(0), which.size(), evaluate);
     };
-    // A pose that needs no support at all (no overhang sample: a CAD part on a face that leaves no
-    // ceiling) beats every pose that needs some, whatever their volumes. Such poses have no
-    // overhang area, so those are judged first; once one needs nothing, the others are only asked
-    // whether they need support, and their trees (most of the search's time on small parts) are not
-    // grown. The choice is the one growing every tree would make (a tree's volume is above 0, and
-    // two poses tie within 1 % of the larger volume), but for a pose whose samples its tree all
-    // left out: its volume of 0 no longer beats a pose with nothing to hold.
+    // A pose whose tree is empty (volume 0, no contact: a CAD part on a face that leaves no ceiling)
+    // is beaten only by another empty one that is lower: any other tree has a volume above 0, and
+    // two poses tie within 1 % of the larger volume. Such poses have no overhang area, so those
+    // are judged first. Once one is found, the others are asked their height only, and only those
+    // as low as it grow their trees. The trees not grown (most of the search's time on small parts)
+    // could not have changed the choice, in whatever order the comparisons below meet them: a
+    // volume above 0 never wins over an empty tree, and a taller empty one that had led would have
+    // lost to the lowest one.
     std::vector<size_t> flat, rest;
-    for (size_t i = 0; i < n_eval; ++i) (o.candidates[i].overhang_area <= 0 ? flat : rest).push_back(i);
+    for (size_t i = 0; i < n_eval; ++i) (o.candidates[i].overhang_area <= 1e-9 ? flat : rest).push_back(i);
     judge(flat, PoseQuestion::tree);
-    const bool bare = std::any_of(flat.begin(), flat.end(), [&](size_t i) { return !o.candidates[i].support.needs_support; });
-    judge(rest, bare ? PoseQuestion::needs_support : PoseQuestion::tree);
+    auto lowest_empty = [&] {
+        double h = INFINITY;
+        for (size_t i = 0; i < n_eval; ++i) {
+            const auto& c = o.candidates[i];
+            if (c.evaluated && c.support.grown && c.support.volume == 0 && c.support.model_contacts == 0)
+                h = std::min(h, c.support.height);
+        }
+        return h;
+    };
+    if (std::isfinite(lowest_empty())) {
+        judge(rest, PoseQuestion::height_if_it_needs_support);
+        const double low = lowest_empty();
+        std::vector<size_t> as_low;
+        for (size_t i : rest)
+            if (!o.candidates[i].support.grown && o.candidates[i].support.height <= low + 1e-6) as_low.push_back(i);
+        judge(as_low, PoseQuestion::tree);
+    } else {
+        judge(rest, PoseQuestion::tree);
+    }
 
     size_t best = 0;
-    while (!o.candidates[best].support.grown) ++best;  // flat poses are all grown; without a bare one, all are
+    while (!o.candidates[best].support.grown) ++best;  // the flat ones are grown; without an empty tree, all are
     std::string why = "overhang area";
     for (size_t i = best + 1; i < n_eval; ++i) {
         const auto &a = o.candidates[i].support, &b = o.candidates[best].support;
-        if (!a.grown || (a.needs_support && !b.needs_support)) continue;
+        if (!a.grown) continue;
         double tol = 0.01 * std::max(a.volume, b.volume);
-        if (!a.needs_support && b.needs_support) best = i, why = "support volume";
-        else if (a.volume < b.volume - tol) best = i, why = "support volume";
+        if (a.volume < b.volume - tol) best = i, why = "support volume";
         else if (std::abs(a.volume - b.volume) <= tol) {
             if (a.model_contacts < b.model_contacts) best = i, why = "model contacts";
             else if (a.model_contacts == b.model_contacts && a.height < b.height - 1e-6) best = i, why = "height";

@@ -27,15 +27,16 @@ struct Rotation {
 
 // What the tree built for one candidate pose.
 struct PoseSupport {
-    bool needs_support = true;  // the pose has overhang samples; false: nothing to hold, no tree
-    bool grown = true;          // false: only needs_support is known (see choose_orientation)
+    bool grown = true;  // false: the pose has overhang samples and its tree was not grown; only
+                        // `height` is known (see choose_orientation)
     double volume = 0;
     std::size_t model_contacts = 0;
     double height = 0;
 };
 
-// How much of a pose the orientation search asks about: its tree, or only whether it needs one.
-enum class PoseQuestion { tree, needs_support };
+// How much of a pose the orientation search asks about: its tree, or, where the pose has overhang
+// samples, its height only.
+enum class PoseQuestion { tree, height_if_it_needs_support };
 
 struct OrientCandidate {
     Vec3 down;          // direction in input coordinates that becomes -Z
@@ -70,10 +71,11 @@ Rotation rotation_to_down(const Vec3& down);
 // `mode` is an --orient value (parse_orient: "auto", "keep" or "RX,RY,RZ"); throws ParameterError
 // for anything else.
 // `support` is called for the best few candidates in auto mode (the mesh rotated by `rotation`,
-// that rotation and the question -> what its tree needs), on several threads at once. A pose that
-// needs no support beats every pose that needs some, so once one is found the others are asked
-// PoseQuestion::needs_support only: `support` may then return {needs_support = true, grown = false}
-// without growing their trees (it must still grow a tree where the pose needs none).
+// that rotation and the question -> what its tree needs), on several threads at once. Once a pose
+// is found whose tree is empty, only a pose as low can beat it, so the others are first asked
+// PoseQuestion::height_if_it_needs_support: `support` then returns {grown = false, height} for a
+// pose with overhang samples, without growing its tree (and grows it, empty, for a pose without).
+// The choice is the one growing every tree makes.
 using PoseJudge = std::function<PoseSupport(const Mesh& rotated, const Rotation& rotation, PoseQuestion question)>;
 Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::string& mode, const PoseJudge& support,
                                std::size_t evaluate_best = 4);

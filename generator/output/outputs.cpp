@@ -146,8 +146,8 @@ std::string report_json(const Result& r, const Job& job) {
         json cj = {{"down", {c.down.x, c.down.y, c.down.z}}, {"source", c.source}, {"overhang_area_mm2", c.overhang_area}};
         if (c.evaluated && c.support.grown)
             cj["support"] = {{"volume_mm3", c.support.volume}, {"model_contacts", c.support.model_contacts}, {"height_mm", c.support.height}};
-        else if (c.evaluated)  // a pose that needs none was found: this one's tree was not grown
-            cj["support"] = {{"needs_support", true}, {"tree_grown", false}};
+        else if (c.evaluated)  // a lower pose with an empty tree was found: this one's was not grown
+            cj["support"] = {{"needs_support", true}, {"tree_grown", false}, {"height_mm", c.support.height}};
         cj["chosen"] = i == r.orientation.chosen;
         cands.push_back(cj);
     }

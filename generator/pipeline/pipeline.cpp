@@ -128,8 +128,8 @@ Orientation orient_by_support(const Mesh& scaled, const Params& p, const std::st
         Rotation id;
         Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
         auto samples = sample_overhangs(placed, coarse_oo, nullptr, &edges);
-        const bool needs_support = !samples.samples.empty();
-        if (needs_support && question == PoseQuestion::needs_support) return PoseSupport{.needs_support = true, .grown = false};
+        if (!samples.samples.empty() && question == PoseQuestion::height_if_it_needs_support)
+            return PoseSupport{.grown = false, .height = bounding_box(placed).size().z};
         std::unique_ptr<const ModelQuery> q;
         if (big || (scan && share_along_axes(placed) <= kMostAlongAxes)) {
             std::call_once(indexed, [&] { as_given = std::make_unique<const ModelQuery>(scaled); });
@@ -140,7 +140,7 @@ Orientation orient_by_support(const Mesh& scaled, const Params& p, const std::st
         // What finish_supports computes of the volume, without the mesh a pose is not judged by.
         const SizedTree sized = grow_cheaper_tree(*q, samples.samples, coarse);
         const double volume = solid_volume(build_bodies(sized, coarse), coarse.wall_thickness);
-        return PoseSupport{needs_support, true, volume, sized.tree.stats.model_contacts, bounding_box(placed).size().z};
+        return PoseSupport{true, volume, sized.tree.stats.model_contacts, bounding_box(placed).size().z};
     });
 }
 

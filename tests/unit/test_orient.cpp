@@ -73,7 +73,7 @@ Orientation orient(const Mesh& m, const std::string& mode = "auto") {
         const OverhangOptions oo = overhang_options(p);
         const auto samples = sample_overhangs(placed, oo).samples;
         auto s = build_supports(placed, samples, p);
-        return PoseSupport{!samples.empty(), true, s.volume, s.sized.tree.stats.model_contacts, bounding_box(placed).size().z};
+        return PoseSupport{true, s.volume, s.sized.tree.stats.model_contacts, bounding_box(placed).size().z};
     });
 }
 
@@ -90,8 +90,8 @@ double placed_overhang_area(const Mesh& m, const Rotation& r) {
     return sample_overhangs(placed, {50, 1.5, 0.2}).overhang_area;
 }
 
-// Like orient(), but answering the search's question: a pose asked only whether it needs support
-// grows no tree when it does. `trees` counts the trees grown.
+// Like orient(), but answering the search's question: a pose asked its height only grows no tree
+// when it has overhang samples. `trees` counts the trees grown.
 Orientation orient_answering(const Mesh& m, int& trees) {
     Params p;
     std::atomic<int> grown{0};
@@ -100,10 +100,12 @@ Orientation orient_answering(const Mesh& m, int& trees) {
         Rotation id;
         Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
         const auto samples = sample_overhangs(placed, overhang_options(p)).samples;
-        if (!samples.empty() && question == PoseQuestion::needs_support) return PoseSupport{.needs_support = true, .grown = false};
+        const double height = bounding_box(placed).size().z;
+        if (!samples.empty() && question == PoseQuestion::height_if_it_needs_support)
+            return PoseSupport{.grown = false, .height = height};
         ++grown;
         auto s = build_supports(placed, samples, p);
-        return PoseSupport{!samples.empty(), true, s.volume, s.sized.tree.stats.model_contacts, bounding_box(placed).size().z};
+        return PoseSupport{true, s.volume, s.sized.tree.stats.model_contacts, height};
     });
     trees = grown;
     return o;
@@ -120,11 +122,12 @@ TEST(Orient, TGoesWhereItNeedsNoSupport) {
     EXPECT_EQ(o.decided_by, "height");
 }
 
-// Once a pose needing no support is found, the poses that need some are not grown (their trees are
-// most of the search's time on a small part), and the choice is the one growing them all makes.
-TEST(Orient, PosesThatNeedSupportAreNotGrownOnceOneNeedsNone) {
-    // A trough (a U swept along y) needs nothing opening up or standing on either end; the fourth
-    // pose judged, on its side, holds a wall over its other wall. Given upside down, and as is.
+// Once a pose with an empty tree is found, only poses as low grow their trees (the others' trees
+// are most of the search's time on a small part), and the choice is the one growing them all makes.
+TEST(Orient, PosesTallerThanOneThatNeedsNothingGrowNoTree) {
+    // A trough (a U swept along y) needs nothing opening up (25 mm tall) or standing on either end
+    // (40 mm); the fourth pose judged, on its side (40 mm), holds a wall over its other wall. Given
+    // upside down, and as is.
     const Mesh trough = extrude_xz({{-20, 0}, {20, 0}, {20, 25}, {17, 25}, {17, 3}, {-17, 3}, {-17, 25}, {-20, 25}}, -20, 20);
     Rotation flip;
     flip.m[1][1] = -1, flip.m[2][2] = -1;
@@ -133,17 +136,19 @@ TEST(Orient, PosesThatNeedSupportAreNotGrownOnceOneNeedsNone) {
         const Orientation answered = orient_answering(m, trees);
         const Orientation grown = orient(m);
         std::size_t asked = 0, not_grown = 0;
+        double lowest_empty = INFINITY;
+        for (const auto& c : answered.candidates)
+            if (c.evaluated && c.support.grown && c.support.volume == 0) lowest_empty = std::min(lowest_empty, c.support.height);
         for (const auto& c : answered.candidates) {
             asked += c.evaluated;
             if (c.evaluated && !c.support.grown) {
                 ++not_grown;
-                EXPECT_TRUE(c.support.needs_support);
                 EXPECT_GT(c.overhang_area, 0) << "a pose with no overhang area is always grown";
+                EXPECT_GT(c.support.height, lowest_empty + 1e-6) << "a pose as low as the lowest empty one is grown";
             }
         }
         EXPECT_GT(not_grown, 0u) << "every pose's tree was grown";
         EXPECT_EQ(trees, static_cast<int>(asked - not_grown));
-        EXPECT_FALSE(answered.candidates[answered.chosen].support.needs_support);
         EXPECT_EQ(answered.chosen, grown.chosen);
         EXPECT_EQ(answered.decided_by, grown.decided_by);
         for (int r = 0; r < 3; ++r)
