@@ -63,18 +63,27 @@ Mesh extrude_xz(const std::vector<std::array<double, 2>>& poly, double y0, doubl
 
 Mesh tee() { return extrude_xz({{-3, 0}, {3, 0}, {3, 20}, {15, 20}, {15, 24}, {-15, 24}, {-15, 20}, {-3, 20}}, -5, 5); }
 
-// Runs the real orientation search (overhang area, then support volume of real trees).
-Orientation orient(const Mesh& m, const std::string& mode = "auto") {
+// Runs the real orientation search (overhang area, then support volume of real trees). With
+// `answer` the judge answers the search's question as the pipeline does: a pose asked its height
+// only grows no tree when it has overhang samples; without, every pose asked grows its tree.
+// `trees` (if given) counts the trees grown.
+Orientation orient(const Mesh& m, const std::string& mode = "auto", bool answer = false, int* trees = nullptr) {
     Params p;
-    return choose_orientation(m, p, mode, [&](const Mesh& rotated, const Rotation&, PoseQuestion) {
+    std::atomic<int> grown{0};
+    Orientation o = choose_orientation(m, p, mode, [&](const Mesh& rotated, const Rotation&, PoseQuestion question) {
         Placement pl;
         Rotation id;
         Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
-        const OverhangOptions oo = overhang_options(p);
-        const auto samples = sample_overhangs(placed, oo).samples;
+        const auto samples = sample_overhangs(placed, overhang_options(p)).samples;
+        const double height = bounding_box(placed).size().z;
+        if (answer && !samples.empty() && question == PoseQuestion::height_if_it_needs_support)
+            return PoseSupport{.grown = false, .height = height};
+        ++grown;
         auto s = build_supports(placed, samples, p);
-        return PoseSupport{true, s.volume, s.sized.tree.stats.model_contacts, bounding_box(placed).size().z};
+        return PoseSupport{true, s.volume, s.sized.tree.stats.model_contacts, height};
     });
+    if (trees) *trees = grown;
+    return o;
 }
 
 Mesh rotated(const Mesh& m, const Rotation& r) {
@@ -88,27 +97,6 @@ double placed_overhang_area(const Mesh& m, const Rotation& r) {
     Rotation id;
     Mesh placed = place_on_bed(rotated(m, r), 1.0, id.m, pl);
     return sample_overhangs(placed, {50, 1.5, 0.2}).overhang_area;
-}
-
-// Like orient(), but answering the search's question: a pose asked its height only grows no tree
-// when it has overhang samples. `trees` counts the trees grown.
-Orientation orient_answering(const Mesh& m, int& trees) {
-    Params p;
-    std::atomic<int> grown{0};
-    Orientation o = choose_orientation(m, p, "auto", [&](const Mesh& rotated, const Rotation&, PoseQuestion question) {
-        Placement pl;
-        Rotation id;
-        Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
-        const auto samples = sample_overhangs(placed, overhang_options(p)).samples;
-        const double height = bounding_box(placed).size().z;
-        if (!samples.empty() && question == PoseQuestion::height_if_it_needs_support)
-            return PoseSupport{.grown = false, .height = height};
-        ++grown;
-        auto s = build_supports(placed, samples, p);
-        return PoseSupport{true, s.volume, s.sized.tree.stats.model_contacts, height};
-    });
-    trees = grown;
-    return o;
 }
 
 // Upright, a T's wings overhang. Plate down or lying on its flat side it needs nothing; of
@@ -133,7 +121,7 @@ TEST(Orient, PosesTallerThanOneThatNeedsNothingGrowNoTree) {
     flip.m[1][1] = -1, flip.m[2][2] = -1;
     for (const Mesh& m : {trough, rotated(trough, flip)}) {
         int trees = 0;
-        const Orientation answered = orient_answering(m, trees);
+        const Orientation answered = orient(m, "auto", true, &trees);
         const Orientation grown = orient(m);
         std::size_t asked = 0, not_grown = 0;
         double lowest_empty = INFINITY;
