@@ -26,30 +26,69 @@ bool tip_fits(const ModelQuery& q, const Vec3& foot, const Params& p) {
            !q.segment_hits(foot, leaf);
 }
 
-// Each flat piece cut into as few pieces as the printer bridges, each on the tip at the middle of
-// its foot: pieces shorter than twice what `check` finds long (the bridge from foot to foot, and
-// twice the overhang past a row's end foot, stay under that), and at least that long (or left whole
-// where it is short). Each foot is a tip of the tree, an island on every layer down to where it
-// merges: the G-code of the validation parts spends most of its support minutes on those islands
+// The cuts of n equal pieces, as fractions (hybrid_piece_cuts).
+std::vector<double> equal_cuts(int n) {
+    std::vector<double> cuts;
+    for (int k = 0; k <= n; ++k) cuts.push_back(double(k) / n);
+    return cuts;
+}
+
+// Each flat piece cut where hybrid_piece_cuts says: the end pieces under twice what `check` finds long
+// (each overhangs its foot by under a long top), at least that long (or left whole where it is
+// short). Each foot is a tip of the tree, an island on every layer down to where it merges: the
+// G-code of the validation parts spends most of its support minutes on those islands
 // (shelf_bracket's arm: 57 in one layer under its pieces). Pieces whose tip does not fit are not built.
 std::vector<CeilingWall> cut_at_feet(const ModelQuery& q, const std::vector<CeilingWall>& pieces, const Params& p) {
     std::vector<CeilingWall> out;
+    // The pieces of `w` between `cuts` whose tip fits, and how many do not.
+    auto cut = [&](const CeilingWall& w, const std::vector<double>& cuts) {
+        std::pair<std::vector<CeilingWall>, std::size_t> kept;
+        for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+            CeilingWall c = w;
+            c.from = w.from + (w.to - w.from) * cuts[k];
+            c.to = w.from + (w.to - w.from) * cuts[k + 1];
+            c.on_tree = true;
+            if (tip_fits(q, feet_of({c}).front(), p)) kept.first.push_back(c);
+            else ++kept.second;
+        }
+        return kept;
+    };
     for (const CeilingWall& w : pieces) {
         const double length = horizontal_distance(w.from, w.to);
-        const double shortest = kSurelyLong * long_top(p, w.thickness);
-        const int n = static_cast<int>(std::floor(length / (2 * shortest))) + 1;
-        for (int k = 0; k < n; ++k) {
-            CeilingWall c = w;
-            c.from = w.from + (w.to - w.from) * (double(k) / n);
-            c.to = w.from + (w.to - w.from) * (double(k + 1) / n);
-            c.on_tree = true;
-            if (tip_fits(q, feet_of({c}).front(), p)) out.push_back(c);
+        const double end_most = 2 * kSurelyLong * long_top(p, w.thickness);
+        auto kept = cut(w, hybrid_piece_cuts(length, end_most, p.hybrid_bridge));
+        // Longer pieces move the feet: where one then has no room for its tip (a post beside it),
+        // equal pieces as short as the end ones, if they lose fewer.
+        if (kept.second > 0 && p.hybrid_bridge > end_most) {
+            auto equal = cut(w, hybrid_piece_cuts(length, end_most, 0));
+            if (equal.second < kept.second) kept = std::move(equal);
         }
+        out.insert(out.end(), kept.first.begin(), kept.first.end());
     }
     return out;
 }
 
 }  // namespace
+
+// Each piece stands on the tip at the middle of its foot (`check` grounds a solid by its foot's
+// middle), so a row's end piece overhangs its foot by half its length on the side with no foot, and
+// between two feet the row's bottom bridges from tip to tip, half of each piece.
+std::vector<double> hybrid_piece_cuts(double length, double end_most, double bridge) {
+    const int equal = static_cast<int>(std::floor(length / end_most)) + 1;  // each piece under end_most
+    if (bridge <= end_most || equal <= 2) return equal_cuts(equal);
+    // n pieces: two ends e (under end_most) and n - 2 pieces r e between them (r = bridge / end_most).
+    const double r = bridge / end_most;
+    auto end_piece = [&](int n) { return length / (2 + (n - 2) * r); };
+    int n = 3;
+    while (end_piece(n) >= end_most) ++n;
+    // As many feet either way: equal pieces, whose bridges are the shorter.
+    if (n >= equal) return equal_cuts(equal);
+    const double e = end_piece(n);
+    std::vector<double> cuts{0.0};
+    for (int k = 1; k < n; ++k) cuts.push_back((e + (k - 1) * r * e) / length);
+    cuts.push_back(1.0);
+    return cuts;
+}
 
 std::optional<double> hybrid_floor(const ModelQuery& q, const Vec3& x, const Params& p) {
     const double foot = x.z - p.gap - p.hybrid_height;

@@ -15,11 +15,13 @@
 //     regions, rows, joins, tops  as for walls (lay_out_ceilings), the floor of every station
 //               `hybrid_height` under its top, where the fall below leaves room for a tip and a
 //               strut (hybrid_floor)
-//     pieces    each flat piece cut into as few pieces as the printer bridges, each at least as
-//               long as `check` still finds a long top (a contact along it) and under twice that
-//               (under 7.5 mm at the default sampling), each standing on one tip at the middle of
-//               its foot: `check` grounds a solid by its foot's middle; the printer bridges the
-//               foot from tip to tip. Fewer pieces, fewer feet: each is a tip of the tree
+//     pieces    each flat piece cut into as few pieces as the printer bridges (hybrid_piece_cuts),
+//               each at least as long as `check` still finds a long top (a contact along it), each
+//               standing on one tip at the middle of its foot: `check` grounds a solid by its
+//               foot's middle. A row's end pieces under twice a long top (under 7.5 mm at the
+//               default sampling: each overhangs its foot by under a long top), the pieces between
+//               them up to p.hybrid_bridge (the printer bridges the row's bottom from tip to tip).
+//               Fewer pieces, fewer feet: each is a tip of the tree
 //     feet      a piece whose tip does not fit (the model too near) is not built
 //     choice    per region by core/slicer_time: the pieces' lines over their height plus the tree
 //               for the samples they leave and their feet, against the region's own tree, on
@@ -53,6 +55,16 @@ using FeetTreeCounter = std::function<TreeCount(const std::vector<Sample>&, cons
 Ceilings support_hybrid(const ModelQuery& model, const std::vector<Sample>& samples, const Params& p,
                         const FeetTreeCounter& tree_count, const std::vector<Box3>& support_blockers = {},
                         const TipAt& tip_at = {}, const std::vector<char>& stay = {}, bool rows_across = true);
+
+// Where a hybrid row's flat piece `length` long is cut into pieces, as fractions of it from 0 to 1
+// (increasing, first 0, last 1): the fewest pieces whose two end pieces are shorter than `end_most`
+// and whose pieces between them are at most `bridge` long and no shorter than the ends. Where
+// `bridge` is no longer than `end_most` (p.hybrid_bridge 0, as before it was a parameter), equal
+// pieces each shorter than `end_most`; so too where the rule would stand as many feet as they do
+// (their bridges are the shorter).
+// Example: hybrid_piece_cuts(40, 7.8, 10): 5 pieces, the ends 6.84 mm, the three between 8.77 mm
+// (equal pieces under 7.8 mm would be 6).
+std::vector<double> hybrid_piece_cuts(double length, double end_most, double bridge);
 
 // Under a point `x` of a ceiling: the foot of a hybrid wall, hybrid_height and a gap below it,
 // where the model (or the bed) below leaves room under the foot for a tip and a strut to leave

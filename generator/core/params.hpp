@@ -55,6 +55,12 @@ struct Params {
     // tree; 0: off. Chosen on the tuning set (u_overhang: 1 mm fastest of 1-6), confirmed on the
     // validation set (README). Off wherever ceiling_span is 0 (every preset but generic-0.4).
     double hybrid_height = 1;
+    // The hybrid's rows stand on feet (tips of the tree) that their bottom bridges between: the
+    // longest such bridge from one foot's tip to the next, mm. A row's end pieces still overhang
+    // their foot by less than check's long top, as every piece did before (0 here: every piece under
+    // twice the long top, about 7.5 mm at the default sampling). 10: Bambu Studio's default maximum
+    // bridge length; measured against 0 on the validation set and the examples (README).
+    double hybrid_bridge = 10;
     // Holes and slots the print bridges (every point of their overhang within reach of an inside
     // corner, a wall going down from it) get no support unless this is true (overhang.hpp).
     bool support_bridges = false;

@@ -77,7 +77,7 @@ private:
 // preset's value, as it was made with.
 bool added_later(const std::string& name) {
     return name == "cs_filament_density" || name == "support_bridges" || name == "ceiling_span" ||
-           name == "hybrid_height";
+           name == "hybrid_height" || name == "hybrid_bridge";
 }
 
 // Every parameter under its .scad name (core/param_table.hpp), each read as its row's kind.
@@ -92,6 +92,7 @@ Params read_params(const Reader& r) {
             if (name == "support_bridges") set_param(row, true, p);  // such a file supported bridged holes
             if (name == "ceiling_span") set_param(row, 0.0, p);      // such a file had no walls
             if (name == "hybrid_height") set_param(row, 0.0, p);     // nor a hybrid
+            if (name == "hybrid_bridge") set_param(row, 0.0, p);     // its pieces all short (2026-12-07)
             continue;
         }
         ParamValue value;

@@ -6,7 +6,9 @@
 
 #include "ceilings/hybrid.hpp"
 #include "check/check.hpp"
+#include "edit/edited_scad.hpp"
 #include "mesh/mesh_io.hpp"
+#include "output/scad.hpp"
 #include "overhang/overhang.hpp"
 #include "pipeline/pipeline.hpp"
 #include "query/model_query.hpp"
@@ -68,7 +70,7 @@ TEST(Hybrid, ShortWallsHangUnderTheCeilingEachOnOneFoot) {
         // A piece is either short (judged at its middle) or surely long (a contact along its top).
         const double length = horizontal_distance(w.from, w.to), top = long_top(h.p, w.thickness);
         EXPECT_TRUE(length < 1.02 * top || length >= 1.05 * top) << length;
-        EXPECT_LT(length, 2 * 1.05 * top + 1e-9);  // the printer bridges its foot from tip to tip
+        EXPECT_LT(length, std::max(2 * 1.05 * top, h.p.hybrid_bridge) + 1e-9);  // the printer bridges from tip to tip
     }
 }
 
@@ -94,6 +96,105 @@ TEST(Hybrid, AFlatPieceIsCutIntoTheFewestPiecesThePrinterBridges) {
         i = j;
     }
     EXPECT_GT(cuts, 0u);  // the deck's rows are longer than one piece
+}
+
+// The cut of one flat piece (hybrid_piece_cuts), over lengths from one piece to many: the two end
+// pieces overhang their foot by under half of `end_most`, the pieces between them bridge at most
+// `bridge` from foot to foot, and no fewer pieces could hold both.
+TEST(Hybrid, APieceIsCutIntoTheFewestWhoseEndsOverhangLittleAndWhoseBridgesThePrinterSpans) {
+    const double end_most = 7.8;
+    for (const double bridge : {0.0, 7.8, 10.0, 14.0}) {
+        for (double length = 1; length < 120; length += 0.37) {
+            const std::vector<double> cuts = hybrid_piece_cuts(length, end_most, bridge);
+            ASSERT_GE(cuts.size(), 2u);
+            EXPECT_EQ(cuts.front(), 0.0);
+            EXPECT_EQ(cuts.back(), 1.0);
+            const std::size_t n = cuts.size() - 1;
+            std::vector<double> piece;
+            for (std::size_t k = 0; k < n; ++k) piece.push_back(length * (cuts[k + 1] - cuts[k]));
+            const std::string at = "length " + std::to_string(length) + ", bridge " + std::to_string(bridge);
+            EXPECT_LT(piece.front(), end_most) << at;
+            EXPECT_LT(piece.back(), end_most) << at;
+            for (std::size_t k = 1; k + 1 < n; ++k) {
+                EXPECT_LE(piece[k], std::max(bridge, end_most) + 1e-9) << at;
+                EXPECT_GE(piece[k], piece.front() - 1e-9) << at;  // the ends are the shortest
+            }
+            const int equal = static_cast<int>(std::floor(length / end_most)) + 1;
+            EXPECT_LE(n, static_cast<std::size_t>(equal)) << at;  // never more feet than equal pieces
+            if (bridge <= end_most) {
+                EXPECT_EQ(n, static_cast<std::size_t>(equal)) << at;  // as before the bridge was a parameter
+                for (const double x : piece) EXPECT_NEAR(x, length / n, 1e-9) << at;
+            }
+            // One piece fewer: ends at least end_most however the rest is spread (the pieces
+            // between them at most max(bridge, end_most) each).
+            if (n >= 2) {
+                const double inner = n >= 3 ? (n - 2 - 1.0) * std::max(bridge, end_most) : 0.0;
+                EXPECT_GE(n == 2 ? length : (length - inner) / 2, end_most - 1e-9) << at;
+            }
+        }
+    }
+}
+
+// A long row stands on fewer feet where the printer bridges further than the end pieces may
+// overhang: a deck 60 mm long on a post at its middle, rows along it. With hybrid_bridge 0 its rows
+// are cut into equal pieces under twice the long top (as before the bridge was a parameter). The
+// rows beside the post keep those: cut for the bridge, their middle foot would stand too near the
+// post for its tip, and the samples over it would go to the tree.
+TEST(Hybrid, ALongRowStandsOnFewerFeetWhereThePrinterBridgesFurther) {
+    test::CellGrid g({-30, -2, 2, 30}, {-6, -2, 2, 6}, {0, 20, 22});
+    g.fill({-2, -2, 0}, {2, 2, 20});
+    g.fill({-30, -6, 20}, {30, 6, 22});
+    const Mesh deck = g.mesh();
+    auto pieces = [&](double bridge) {
+        Hybrid h{deck, {}, {}, {}};
+        h.p.hybrid_height = 3;
+        h.p.hybrid_bridge = bridge;
+        ModelQuery q(h.model);
+        h.samples = sample_overhangs(h.model, {h.p.critical_angle, h.p.sampling_distance, h.p.layer_height, touching_space(h.p)}, &q);
+        h.hybrid = support_hybrid(q, h.samples.samples, h.p, dear_tree);
+        return h;
+    };
+    const Hybrid before = pieces(0), after = pieces(10);
+    ASSERT_FALSE(before.hybrid.walls.empty());
+    EXPECT_LT(after.hybrid.feet.size(), before.hybrid.feet.size());
+    EXPECT_EQ(after.hybrid.covered, before.hybrid.covered);  // the same samples held
+    double longest_before = 0, longest_after = 0;
+    for (const CeilingWall& w : before.hybrid.walls) longest_before = std::max(longest_before, horizontal_distance(w.from, w.to));
+    for (const CeilingWall& w : after.hybrid.walls) longest_after = std::max(longest_after, horizontal_distance(w.from, w.to));
+    const double end_most = 2 * 1.05 * long_top(after.p, after.p.wall_thickness);
+    EXPECT_LT(longest_before, end_most);
+    EXPECT_GT(longest_after, end_most);  // the pieces between the ends
+    EXPECT_LE(longest_after, 10 + 1e-9);
+    // Grown and judged as the pipeline does: the tree carries every foot and check passes.
+    ModelQuery q(after.model);
+    SizedTree grown = grow_cheaper_tree(q, hang_feet(hang_leaves(q, after.hybrid.rest, after.p), after.hybrid.feet, after.p), after.p);
+    ASSERT_TRUE(feet_carried(grown.tree, after.hybrid.feet));
+    const Supports s = finish_supports(std::move(grown), after.p, {}, after.hybrid.walls);
+    const CheckResult r = check_supports(after.model, s.mesh, after.p, {});
+    EXPECT_TRUE(r.ok()) << r.summary();
+}
+
+// The bridge travels in the .scad (the Customizer's [Regrow] values), so `regrow` cuts the rows as
+// the run did; a file written before the parameter (no `hybrid_bridge` line) regrows its rows as
+// they were cut then: equal pieces under twice the long top (hybrid_bridge 0).
+TEST(Hybrid, TheBridgeIsReadBackFromTheScadAndAFileWithoutItCutsAsBefore) {
+    test::TempDir tmp;
+    const std::string input = tmp / "deck.stl";
+    write_stl(input, high_deck());
+    Job job;
+    job.input = input;
+    job.orient = "keep";
+    job.params.hybrid_bridge = 12.5;
+    const Result r = run_job(job);
+    const ScadMeta meta{"test", r.input_sha256, input, "deck.model.stl", pose_numbers(r.placement), ""};
+    const std::string text = emit_scad(r.supports, job, meta);
+    EXPECT_EQ(read_edited_scad_text(text, tmp / "deck.scad").job.params.hybrid_bridge, 12.5);
+    const auto line = text.find("\nhybrid_bridge = ");
+    ASSERT_NE(line, std::string::npos) << "not among the .scad's parameters";
+    std::string before = text;
+    before.erase(line + 1, text.find('\n', line + 1) - line);
+    EXPECT_EQ(before.find("hybrid_bridge ="), std::string::npos);
+    EXPECT_EQ(read_edited_scad_text(before, tmp / "deck.scad").job.params.hybrid_bridge, 0.0);
 }
 
 // The whole structure, grown as the pipeline grows it: the tree carries every foot, and `check`
