@@ -34,6 +34,15 @@ Mesh high_deck() {
     return g.mesh();
 }
 
+// The pipeline's job on the deck, written into `tmp`, pose kept.
+Job deck_job(const test::TempDir& tmp) {
+    Job job;
+    job.input = tmp / "deck.stl";
+    write_stl(job.input, high_deck());
+    job.orient = "keep";
+    return job;
+}
+
 struct Hybrid {
     Mesh model;
     Params p;
@@ -41,9 +50,10 @@ struct Hybrid {
     Ceilings hybrid;
 };
 
-Hybrid hybrid(const Mesh& model, double height) {
+Hybrid hybrid(const Mesh& model, double height, double bridge = Params{}.hybrid_bridge) {
     Hybrid h{model, {}, {}, {}};
     h.p.hybrid_height = height;
+    h.p.hybrid_bridge = bridge;
     ModelQuery q(h.model);
     h.samples = sample_overhangs(h.model, {h.p.critical_angle, h.p.sampling_distance, h.p.layer_height, touching_space(h.p)}, &q);
     h.hybrid = support_hybrid(q, h.samples.samples, h.p, dear_tree);
@@ -145,16 +155,7 @@ TEST(Hybrid, ALongRowStandsOnFewerFeetWhereThePrinterBridgesFurther) {
     g.fill({-2, -2, 0}, {2, 2, 20});
     g.fill({-30, -6, 20}, {30, 6, 22});
     const Mesh deck = g.mesh();
-    auto pieces = [&](double bridge) {
-        Hybrid h{deck, {}, {}, {}};
-        h.p.hybrid_height = 3;
-        h.p.hybrid_bridge = bridge;
-        ModelQuery q(h.model);
-        h.samples = sample_overhangs(h.model, {h.p.critical_angle, h.p.sampling_distance, h.p.layer_height, touching_space(h.p)}, &q);
-        h.hybrid = support_hybrid(q, h.samples.samples, h.p, dear_tree);
-        return h;
-    };
-    const Hybrid before = pieces(0), after = pieces(10);
+    const Hybrid before = hybrid(deck, 3, 0), after = hybrid(deck, 3, 10);
     ASSERT_FALSE(before.hybrid.walls.empty());
     EXPECT_LT(after.hybrid.feet.size(), before.hybrid.feet.size());
     EXPECT_EQ(after.hybrid.covered, before.hybrid.covered);  // the same samples held
@@ -179,14 +180,10 @@ TEST(Hybrid, ALongRowStandsOnFewerFeetWhereThePrinterBridgesFurther) {
 // they were cut then: equal pieces under twice the long top (hybrid_bridge 0).
 TEST(Hybrid, TheBridgeIsReadBackFromTheScadAndAFileWithoutItCutsAsBefore) {
     test::TempDir tmp;
-    const std::string input = tmp / "deck.stl";
-    write_stl(input, high_deck());
-    Job job;
-    job.input = input;
-    job.orient = "keep";
+    Job job = deck_job(tmp);
     job.params.hybrid_bridge = 12.5;
     const Result r = run_job(job);
-    const ScadMeta meta{"test", r.input_sha256, input, "deck.model.stl", pose_numbers(r.placement), ""};
+    const ScadMeta meta{"test", r.input_sha256, job.input, "deck.model.stl", pose_numbers(r.placement), ""};
     const std::string text = emit_scad(r.supports, job, meta);
     EXPECT_EQ(read_edited_scad_text(text, tmp / "deck.scad").job.params.hybrid_bridge, 12.5);
     const auto line = text.find("\nhybrid_bridge = ");
@@ -333,11 +330,7 @@ TEST(Hybrid, OffOrWithoutRoomForATipEverySampleStaysWithTheTree) {
 // Through the pipeline (the walls first, the time model choosing): whatever it builds, check passes.
 TEST(Hybrid, ThePipelinesRunPassesCheck) {
     test::TempDir tmp;
-    const std::string input = tmp / "deck.stl";
-    write_stl(input, high_deck());
-    Job job;
-    job.input = input;
-    job.orient = "keep";
+    Job job = deck_job(tmp);
     job.params.hybrid_height = 3;
     const Result r = run_job(job);
     const CheckResult c = check_supports(r.model, r.supports.mesh, job.params, {});
