@@ -41,15 +41,19 @@ std::vector<double> equal_cuts(int n) {
 std::vector<CeilingWall> cut_at_feet(const ModelQuery& q, const std::vector<CeilingWall>& pieces, const Params& p) {
     std::vector<CeilingWall> out;
     // The pieces of `w` between `cuts` whose tip fits, and how many do not.
+    struct Cut {
+        std::vector<CeilingWall> built;
+        std::size_t lost = 0;
+    };
     auto cut = [&](const CeilingWall& w, const std::vector<double>& cuts) {
-        std::pair<std::vector<CeilingWall>, std::size_t> kept;
+        Cut kept;
         for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
             CeilingWall c = w;
             c.from = w.from + (w.to - w.from) * cuts[k];
             c.to = w.from + (w.to - w.from) * cuts[k + 1];
             c.on_tree = true;
-            if (tip_fits(q, feet_of({c}).front(), p)) kept.first.push_back(c);
-            else ++kept.second;
+            if (tip_fits(q, feet_of({c}).front(), p)) kept.built.push_back(c);
+            else ++kept.lost;
         }
         return kept;
     };
@@ -59,11 +63,11 @@ std::vector<CeilingWall> cut_at_feet(const ModelQuery& q, const std::vector<Ceil
         auto kept = cut(w, hybrid_piece_cuts(length, end_most, p.hybrid_bridge));
         // Longer pieces move the feet: where one then has no room for its tip (a post beside it),
         // equal pieces as short as the end ones, if they lose fewer.
-        if (kept.second > 0 && p.hybrid_bridge > end_most) {
-            auto equal = cut(w, hybrid_piece_cuts(length, end_most, 0));
-            if (equal.second < kept.second) kept = std::move(equal);
+        if (kept.lost > 0 && p.hybrid_bridge > end_most) {
+            Cut equal = cut(w, hybrid_piece_cuts(length, end_most, 0));
+            if (equal.lost < kept.lost) kept = std::move(equal);
         }
-        out.insert(out.end(), kept.first.begin(), kept.first.end());
+        out.insert(out.end(), kept.built.begin(), kept.built.end());
     }
     return out;
 }
@@ -75,13 +79,13 @@ std::vector<CeilingWall> cut_at_feet(const ModelQuery& q, const std::vector<Ceil
 // between two feet the row's bottom bridges from tip to tip, half of each piece.
 std::vector<double> hybrid_piece_cuts(double length, double end_most, double bridge) {
     const int equal = static_cast<int>(std::floor(length / end_most)) + 1;  // each piece under end_most
-    if (bridge <= end_most || equal <= 2) return equal_cuts(equal);
+    if (bridge <= end_most) return equal_cuts(equal);
     // n pieces: two ends e (under end_most) and n - 2 pieces r e between them (r = bridge / end_most).
     const double r = bridge / end_most;
     auto end_piece = [&](int n) { return length / (2 + (n - 2) * r); };
     int n = 3;
     while (end_piece(n) >= end_most) ++n;
-    // As many feet either way: equal pieces, whose bridges are the shorter.
+    // As many feet either way (always so for two or fewer): equal pieces, whose bridges are the shorter.
     if (n >= equal) return equal_cuts(equal);
     const double e = end_piece(n);
     std::vector<double> cuts{0.0};
