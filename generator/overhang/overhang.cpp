@@ -157,6 +157,23 @@ bool hanging_keel(const Mesh& m, std::uint32_t f0, std::uint32_t f1, std::uint32
     return rises(f0) && rises(f1);
 }
 
+// A face reaching less than this far from its edge (a, b), per mm of the edge, is a sliver: its
+// third corner lies on the edge's line (a zero-area face a mesh leaves between two faces of one
+// surface, as along molecule.stl's sticks, whose normal is rounding). A nanometre per millimetre:
+// far below anything a printer draws, and far above the rounding of the placed mesh's doubles.
+// (A float STL's own rounding, some 10 nm at 100 mm, can leave wider ones; they count as faces.)
+constexpr double kSliverWidthPerLength = 1e-6;
+
+// Is face fi, which has the edge (a, b), a sliver (kSliverWidthPerLength)?
+bool sliver_at_edge(const Mesh& m, std::uint32_t fi, std::uint32_t a, std::uint32_t b) {
+    const auto& f = m.faces[fi];
+    const std::uint32_t far = f[0] != a && f[0] != b ? f[0] : (f[1] != a && f[1] != b ? f[1] : f[2]);
+    const Vec3 e = m.vertices[b] - m.vertices[a], w = m.vertices[far] - m.vertices[a];
+    const double e2 = dot(e, e);
+    if (!(e2 > 0)) return true;
+    return !(norm(w - e * (dot(w, e) / e2)) > kSliverWidthPerLength * std::sqrt(e2));
+}
+
 // Edges that need samples of their own: region borders that are lips (one side needs support and
 // the other side turns up), and downward convex ridges. Inside-corner borders (a wall going down
 // from the overhang) become anchors: the wall carries the overhang there.
@@ -188,8 +205,10 @@ std::vector<EdgeSegment> support_edges(const Mesh& m, const std::vector<char>& c
         bool any_border = over > 0 && over < static_cast<int>(fs.size());
         bool border = any_border && (fs.size() != 2 || convex());
         // (Points along it as close as the rims are judged: the whole corner carries, not just
-        // points a spacing apart.)
-        if (any_border && !border)
+        // points a spacing apart.) Where either face is a sliver, there is no corner: a sliver
+        // classed an overhang has no overhang to carry, and one classed a wall holds nothing up.
+        const bool sliver = fs.size() == 2 && (sliver_at_edge(m, fs[0], a, b) || sliver_at_edge(m, fs[1], a, b));
+        if (any_border && !border && !sliver)
             sample_segment(pa, pb, kEdgeStepOfReach * coverage_reach(o.sampling_distance), res.anchors);
         bool open_border = fs.size() == 1 && over == 1;
         bool ridge = false;

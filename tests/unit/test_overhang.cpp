@@ -321,6 +321,29 @@ TEST(SampleOverhangs, DownwardRidgeIsSampledAlongItsLength) {
 
 // ---------------------------------------------------------------- lean sampling
 
+// A plate's underside (z = 5, facing down) whose edge y = 0 is split at its middle d, a T-junction
+// a mesh closes with a zero-area face (a, b, d): d lies 1e-7 mm off the edge's line, so the sliver's
+// normal, rounding, faces straight down and it is classed an overhang. Beside it along (a, b), a face
+// that is no overhang. Found on molecule.stl at 1.5x (auto pose): such an edge counted as an inside
+// corner, its anchors held the overhang around it, and `check` failed there (0.21 mm2 beyond reach).
+TEST(SampleOverhangs, ASliverClassedAnOverhangAnchorsNothing) {
+    Mesh m;
+    const Vec3 a{0, 0, 5}, b{10, 0, 5}, d{5, -1e-7, 5}, p{0, -10, 5}, q{10, -10, 5}, c{5, -5, 4.9};
+    m.vertices = {a, b, d, p, q, c};
+    m.faces = {{0, 1, 2},               // the sliver (a, b, d), first: its normal decides convexity
+               {0, 2, 3}, {2, 4, 3}, {2, 1, 4},  // the plate, facing down
+               {1, 0, 5}};              // beside the sliver along (a, b): no overhang
+    const OverhangOptions o = default_options();
+    const auto cls = classify_faces(m, o);
+    ASSERT_EQ(cls[0], 1) << "the sliver is classed an overhang, as on molecule.stl";
+    ASSERT_EQ(cls[4], 0);
+    const OverhangSamples s = sample_overhangs(m, o);
+    EXPECT_TRUE(s.anchors.empty()) << s.anchors.size() << " anchors, the first at (" << s.anchors.front().x << ", "
+                                   << s.anchors.front().y << ", " << s.anchors.front().z << ")";
+    // The plate's points there are held by samples instead.
+    EXPECT_TRUE(uncovered(m, s, o).empty());
+}
+
 TEST(LeanSampling, EveryOverhangPointIsCoveredWithinReach) {
     // Flat plates, a curved cap with a pole and a twisted rim, at two spacings.
     std::vector<Mesh> shapes{cs::test::t_shape(), cs::test::bridge_shape(), cs::test::cantilever_over_box(),
