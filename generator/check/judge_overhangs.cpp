@@ -8,6 +8,16 @@ namespace cs {
 namespace {
 
 
+// A face (or a line) at the critical angle itself is printable: it needs support only beyond it.
+// The judge reads the model as written, in float32, so a face drawn at exactly the critical angle
+// (a 45 degree chamfer under a 45 degree preset, or a face the pose turned there) comes back
+// tilted by the rounding of its corners, to either side: by 1e-8 in n_z on wedge_ledge turned a
+// quarter at 0.8x, by 1e-16 on shelter_roof at 1.3x, whose supports `check` then failed over 33
+// and 200 mm2. Within this much of the critical angle, in n_z (or in a line's slope), a face is
+// taken to lie at it. Rounding a corner of up to 150 mm from the origin moves it by 1e-5 mm at
+// most, which tilts a face a millimetre across by about that; in angle, under 0.001 degree.
+constexpr double kCriticalRounding = 1e-5;
+
 using EdgeKey = std::pair<std::uint32_t, std::uint32_t>;
 
 std::map<EdgeKey, std::vector<std::uint32_t>> faces_by_edge(const Mesh& m) {
@@ -69,8 +79,9 @@ void sample_overhang_faces(const Mesh& m, const std::vector<char>& overhang, dou
 
 JudgeOverhangs judge_overhangs(const Mesh& m, double critical_angle_deg, double bed_z, double spacing) {
     JudgeOverhangs out;
-    const double overhang_nz = -std::sin(deg_to_rad(critical_angle_deg));
-    const double line_ez = std::cos(deg_to_rad(critical_angle_deg));  // a line flatter than this hangs
+    // Beyond the critical angle by more than the file's rounding (kCriticalRounding).
+    const double overhang_nz = -std::sin(deg_to_rad(critical_angle_deg)) - kCriticalRounding;
+    const double line_ez = std::cos(deg_to_rad(critical_angle_deg)) - kCriticalRounding;  // a line flatter than this hangs
 
     std::vector<char> overhang(m.faces.size(), 0);
     std::vector<Vec3> normal(m.faces.size());

@@ -2,7 +2,8 @@
 // It shares no code with the generator's sampling (generator/overhang/): if the generator stops
 // emitting a kind of sample, this still finds the surface that needed it.
 //
-//  face points    overhang faces (outward normal n_z < -sin(critical angle)), sampled on a
+//  face points    overhang faces (outward normal n_z < -sin(critical angle), by more than the
+//                 float32 rounding of the file: kCriticalRounding in the .cpp), sampled on a
 //                 barycentric grid no coarser than `spacing`, each carrying its share of the area;
 //  ridge points   convex edges between two downward-facing faces whose line is itself flatter than
 //                 the critical angle (a hanging keel), sampled along the edge;

@@ -42,7 +42,9 @@ EndWidths strut_end_widths(const Params& p, double node_width, double run_length
     return w;
 }
 
-double overhang_normal_z_limit(double critical_angle_deg) { return -std::sin(deg_to_rad(critical_angle_deg)); }
+double overhang_normal_z_limit(double critical_angle_deg) {
+    return -std::sin(deg_to_rad(critical_angle_deg)) - kCriticalRounding;
+}
 
 double min_n_width(const Params& p) { return 3 * p.wall_thickness; }
 

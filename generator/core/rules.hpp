@@ -56,8 +56,16 @@ double min_n_width(const Params& p);
 
 // ----------------------------------------------------------------------------- what needs support
 
-// A face whose unit outward normal has n_z below this needs support: n_z < -sin(critical angle).
-// Orientation (orient/) scores poses and sampling (overhang/) classifies faces by it.
+// A face at the critical angle itself is printable; so is one within this much of it (in n_z,
+// about 0.001 degree): the model.stl a slicer (and `check`) reads is float32, which tilts a face
+// drawn at exactly the critical angle (a 45 degree chamfer under a 45 degree preset, or a face the
+// pose turned there) by its corners' rounding, to either side. Its corners, up to 150 mm from the
+// origin, move by 1e-5 mm at most: a face a millimetre across tilts by about that.
+constexpr double kCriticalRounding = 1e-5;
+
+// A face whose unit outward normal has n_z below this needs support: n_z < -sin(critical angle),
+// beyond kCriticalRounding. Orientation (orient/) scores poses and sampling (overhang/) classifies
+// faces by it.
 double overhang_normal_z_limit(double critical_angle_deg);
 
 // ----------------------------------------------------------------------------- joints and contacts

@@ -139,6 +139,15 @@ std::vector<Vec3> lattice_samples(const Mesh& m, const std::vector<char>& cls, d
     return lattice;
 }
 
+// From the edge (a, b) of face fi to its third corner, at right angles to the edge: where the face
+// goes, seen from the edge.
+Vec3 away_from_edge(const Mesh& m, std::uint32_t fi, std::uint32_t a, std::uint32_t b) {
+    const auto& f = m.faces[fi];
+    const std::uint32_t far = f[0] != a && f[0] != b ? f[0] : (f[1] != a && f[1] != b ? f[1] : f[2]);
+    const Vec3 e = m.vertices[b] - m.vertices[a], w = m.vertices[far] - m.vertices[a];
+    return w - e * (dot(w, e) / dot(e, e));
+}
+
 // A keel: two downward-facing faces that both rise away from their shared edge (the edge is the
 // lowest line of its cross-section), the edge itself flatter than the critical angle. Such a line
 // hangs whatever the faces' own slopes: nothing below it grows up to it.
@@ -148,13 +157,7 @@ bool hanging_keel(const Mesh& m, std::uint32_t f0, std::uint32_t f1, std::uint32
     const Vec3 e = m.vertices[b] - m.vertices[a];
     const double cos_c = std::sqrt(std::max(0.0, 1 - sin_c * sin_c));
     if (norm(e) == 0 || std::abs(e.z) / norm(e) >= cos_c) return false;
-    auto rises = [&](std::uint32_t fi) {
-        const auto& f = m.faces[fi];
-        std::uint32_t far = f[0] != a && f[0] != b ? f[0] : (f[1] != a && f[1] != b ? f[1] : f[2]);
-        const Vec3 w = m.vertices[far] - m.vertices[a];
-        return (w - e * (dot(w, e) / dot(e, e))).z > 0;
-    };
-    return rises(f0) && rises(f1);
+    return away_from_edge(m, f0, a, b).z > 0 && away_from_edge(m, f1, a, b).z > 0;
 }
 
 // A face reaching less than this far from its edge (a, b), per mm of the edge, is a sliver: its
@@ -166,12 +169,16 @@ constexpr double kSliverWidthPerLength = 1e-6;
 
 // Is face fi, which has the edge (a, b), a sliver (kSliverWidthPerLength)?
 bool sliver_at_edge(const Mesh& m, std::uint32_t fi, std::uint32_t a, std::uint32_t b) {
-    const auto& f = m.faces[fi];
-    const std::uint32_t far = f[0] != a && f[0] != b ? f[0] : (f[1] != a && f[1] != b ? f[1] : f[2]);
-    const Vec3 e = m.vertices[b] - m.vertices[a], w = m.vertices[far] - m.vertices[a];
-    const double e2 = dot(e, e);
-    if (!(e2 > 0)) return true;
-    return !(norm(w - e * (dot(w, e) / e2)) > kSliverWidthPerLength * std::sqrt(e2));
+    const double length = distance(m.vertices[a], m.vertices[b]);
+    return !(length > 0) || !(norm(away_from_edge(m, fi, a, b)) > kSliverWidthPerLength * length);
+}
+
+// Does face fi go down from its edge (a, b): its third corner, seen across the edge, lower than
+// the edge? A wall below an overhang does, and carries the overhang's edge as it is printed; a
+// face that bends towards the overhang's side but rises (a curved underside going on, a little
+// steeper than the critical angle) carries nothing.
+bool goes_down_from_edge(const Mesh& m, std::uint32_t fi, std::uint32_t a, std::uint32_t b) {
+    return away_from_edge(m, fi, a, b).z < 0;
 }
 
 // Edges that need samples of their own: region borders that are lips (one side needs support and
@@ -208,7 +215,7 @@ std::vector<EdgeSegment> support_edges(const Mesh& m, const std::vector<char>& c
         // points a spacing apart.) Where either face is a sliver, there is no corner: a sliver
         // classed an overhang has no overhang to carry, and one classed a wall holds nothing up.
         const bool sliver = fs.size() == 2 && (sliver_at_edge(m, fs[0], a, b) || sliver_at_edge(m, fs[1], a, b));
-        if (any_border && !border && !sliver)
+        if (any_border && !border && !sliver && goes_down_from_edge(m, fs[cls[fs[0]] ? 1 : 0], a, b))
             sample_segment(pa, pb, kEdgeStepOfReach * coverage_reach(o.sampling_distance), res.anchors);
         bool open_border = fs.size() == 1 && over == 1;
         bool ridge = false;

@@ -454,6 +454,33 @@ TEST(CheckPlanted, AnUnsupportedRidgeFailsAndTheGeneratorsSupportsPass) {
 
 // A point on the steep part of a slope (no overhang) needs nothing; the judge's lowest points of a
 // hanging cone do.
+namespace {
+
+// A prism floating 5 mm up whose underside rises along x at `rise` per 10 mm (the angle from
+// horizontal atan(rise / 10)), with a vertical back and a flat top: 10 mm deep along y.
+Mesh prism_with_sloped_underside(double rise) {
+    Mesh m;
+    m.vertices = {{0, 0, 5}, {10, 0, 5 + rise}, {0, 0, 5 + rise}, {0, 10, 5}, {10, 10, 5 + rise}, {0, 10, 5 + rise}};
+    m.faces = {{0, 1, 2}, {3, 5, 4}, {0, 3, 4}, {0, 4, 1}, {1, 4, 5}, {1, 5, 2}, {2, 5, 3}, {2, 3, 0}};
+    return m;
+}
+
+}  // namespace
+
+// A face at the critical angle itself is printable, though the float32 file the judge reads may
+// tilt it a hair past it (wedge_ledge turned a quarter at 0.8x under ender3-pla: 1e-8 in n_z, and
+// `check` failed its supports over 33 mm2); a face a tenth of a degree past it is an overhang.
+TEST(CheckPlanted, AFaceAtTheCriticalAngleIsPrintableThoughRoundingTiltsItPast) {
+    Params p;
+    p.critical_angle = 45;
+    const CheckResult at = check_supports(prism_with_sloped_underside(10 * std::tan(M_PI / 4 - 1e-8)), Mesh{}, p, {});
+    EXPECT_EQ(at.face_points, 0u) << at.summary();
+    EXPECT_TRUE(at.coverage_ok()) << at.summary();
+    const CheckResult past = check_supports(prism_with_sloped_underside(10 * std::tan((45 - 0.1) * M_PI / 180)), Mesh{}, p, {});
+    EXPECT_GT(past.face_points, 0u) << past.summary();
+    EXPECT_FALSE(past.coverage_ok()) << past.summary();
+}
+
 TEST(CheckPlanted, JudgeFindsTheLowestPointOfAHangingCone) {
     Params p;
     Mesh m;  // a square pyramid pointing down, apex at z = 5, its sides 30 degrees from vertical

@@ -199,6 +199,12 @@ TEST(NeedsSupport, Thresholds) {
     EXPECT_FALSE(needs_support(chamfer, 50));
     EXPECT_TRUE(needs_support(chamfer, 40));
     EXPECT_FALSE(needs_support({0, 0, -1}, 90));  // nothing needs support at 90
+    // Within kCriticalRounding of the critical angle (the float32 model.stl tilts a face drawn at it
+    // by its corners' rounding) a face is still at it: printable; a little beyond, an overhang.
+    auto steeper_by = [&](double dz) { return Vec3{std::sqrt(1 - (s50 + dz) * (s50 + dz)), 0, -(s50 + dz)}; };
+    EXPECT_FALSE(needs_support(steeper_by(1e-8), 50));
+    EXPECT_FALSE(needs_support(steeper_by(0.5 * kCriticalRounding), 50));
+    EXPECT_TRUE(needs_support(steeper_by(2 * kCriticalRounding), 50));
 }
 
 TEST(ClassifyFaces, CubeOnBedHasNoOverhang) {
