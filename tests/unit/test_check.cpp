@@ -452,8 +452,6 @@ TEST(CheckPlanted, AnUnsupportedRidgeFailsAndTheGeneratorsSupportsPass) {
     EXPECT_TRUE(built.ok()) << built.summary();
 }
 
-// A point on the steep part of a slope (no overhang) needs nothing; the judge's lowest points of a
-// hanging cone do.
 namespace {
 
 // A prism floating 5 mm up whose underside rises along x at `rise` per 10 mm (the angle from
@@ -481,6 +479,8 @@ TEST(CheckPlanted, AFaceAtTheCriticalAngleIsPrintableThoughRoundingTiltsItPast) 
     EXPECT_FALSE(past.coverage_ok()) << past.summary();
 }
 
+// A point on the steep part of a slope (no overhang) needs nothing; the judge's lowest points of a
+// hanging cone do.
 TEST(CheckPlanted, JudgeFindsTheLowestPointOfAHangingCone) {
     Params p;
     Mesh m;  // a square pyramid pointing down, apex at z = 5, its sides 30 degrees from vertical

@@ -325,8 +325,6 @@ TEST(SampleOverhangs, DownwardRidgeIsSampledAlongItsLength) {
     for (double x = 0; x <= 9; x += 0.05) EXPECT_TRUE(covered_by(pts, {x, 0, 5}, default_options())) << "ridge at x " << x;
 }
 
-// ---------------------------------------------------------------- lean sampling
-
 // A plate's underside (z = 5, facing down) whose edge y = 0 is split at its middle d, a T-junction
 // a mesh closes with a zero-area face (a, b, d): d lies 1e-7 mm off the edge's line, so the sliver's
 // normal, rounding, faces straight down and it is classed an overhang. Beside it along (a, b), a face
@@ -349,6 +347,8 @@ TEST(SampleOverhangs, ASliverClassedAnOverhangAnchorsNothing) {
     // The plate's points there are held by samples instead.
     EXPECT_TRUE(uncovered(m, s, o).empty());
 }
+
+// ---------------------------------------------------------------- lean sampling
 
 TEST(LeanSampling, EveryOverhangPointIsCoveredWithinReach) {
     // Flat plates, a curved cap with a pole and a twisted rim, at two spacings.
