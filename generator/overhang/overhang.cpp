@@ -212,10 +212,11 @@ std::vector<EdgeSegment> support_edges(const Mesh& m, const std::vector<char>& c
         bool any_border = over > 0 && over < static_cast<int>(fs.size());
         bool border = any_border && (fs.size() != 2 || convex());
         // (Points along it as close as the rims are judged: the whole corner carries, not just
-        // points a spacing apart.) Where either face is a sliver, there is no corner: a sliver
-        // classed an overhang has no overhang to carry, and one classed a wall holds nothing up.
-        const bool sliver = fs.size() == 2 && (sliver_at_edge(m, fs[0], a, b) || sliver_at_edge(m, fs[1], a, b));
-        if (any_border && !border && !sliver && goes_down_from_edge(m, fs[cls[fs[0]] ? 1 : 0], a, b))
+        // points a spacing apart.) Only an edge of two faces gets here (a border of more is sampled).
+        // Where either face is a sliver, there is no corner: a sliver classed an overhang has no
+        // overhang to carry, and one classed a wall holds nothing up.
+        if (any_border && !border && !sliver_at_edge(m, fs[0], a, b) && !sliver_at_edge(m, fs[1], a, b) &&
+            goes_down_from_edge(m, fs[cls[fs[0]] ? 1 : 0], a, b))
             sample_segment(pa, pb, kEdgeStepOfReach * coverage_reach(o.sampling_distance), res.anchors);
         bool open_border = fs.size() == 1 && over == 1;
         bool ridge = false;
