@@ -4,9 +4,9 @@
 // scan spent 28.7 of its 75.9 s wall in the kernel (bench/results/scan_5m.md).
 //
 // Two steps, both process settings, hence in the CLI:
-//   - tune_allocator(), first thing in main: glibc keeps buffers up to 32 MB on its heap and freed
-//     memory up to 512 MB, and the heap's first 256 MB take huge pages. Enough for a model of up
-//     to a few hundred thousand triangles.
+//   - tune_allocator(), first thing in main: every thread allocates from the main heap, glibc keeps
+//     buffers up to 32 MB on it and freed memory up to 512 MB, and its first 256 MB take huge
+//     pages. Enough for a model of up to a few hundred thousand triangles.
 //   - rerun_on_huge_pages(inputs, argv), once the command line is parsed: larger inputs run the
 //     whole process again with glibc's own tunable `glibc.malloc.hugetlb=1`, which puts every
 //     allocation on huge pages (the buffers over 32 MB, which glibc maps apart from its heap, and
