@@ -8,6 +8,7 @@
 
 #include "core/rules.hpp"
 #include "mesh/repair.hpp"
+#include "orient/symmetry.hpp"
 #include "overhang/overhang.hpp"
 
 namespace cs {
@@ -126,6 +127,41 @@ std::vector<std::pair<Vec3, std::string>> candidate_directions(const Mesh& mesh)
     return unique;
 }
 
+// How close (a share of the model's bounding-box diagonal) a turned copy must lie to the surface
+// for the turn to count as a symmetry: float32 STL coordinates carry about 1e-7 of their size, and
+// a part asymmetric by less than a hundred-thousandth of its size prints the same either way.
+constexpr double kSymmetryTolerance = 1e-5;
+
+// The turns about the vertical tried between two poses: quarter turns (boxes, a cube's faces) and
+// sixths (hexagonal parts).
+constexpr int kTurnsTried[] = {0, 90, 180, 270, 60, 120, 240, 300};
+
+// Whether the first n candidates are all one print: each the first turned about the vertical (see
+// orient/symmetry.hpp). Then there is nothing to judge between them but where the sampling lattice
+// falls, and each of the others is marked a repeat of the first. Where some are other prints,
+// every pose is judged: a pose turned about the vertical is then one more placement of the
+// lattice, and the search keeps what it finds (the wheel example's two turned poses: coarse trees
+// 4 % apart). A symmetry keeps the overhang area, so a part whose best poses differ in area pays
+// nothing.
+bool all_one_print(const Mesh& mesh, std::vector<OrientCandidate>& cands, size_t n) {
+    const double area = cands[0].overhang_area;
+    for (size_t i = 1; i < n; ++i)
+        if (std::abs(cands[i].overhang_area - area) > 1e-6 * std::max(area, cands[i].overhang_area) + 1e-9) return false;
+    const ModelQuery surface(mesh);
+    const Vec3 centroid = surface_centroid(mesh);
+    const double tolerance = kSymmetryTolerance * norm(bounding_box(mesh).size());
+    for (size_t i = 1; i < n; ++i) {
+        const bool repeat = std::any_of(std::begin(kTurnsTried), std::end(kTurnsTried), [&](int degrees) {
+            return maps_onto_itself(surface, centroid,
+                                    compose(transposed(cands[0].rotation), compose(turn_about_z(degrees), cands[i].rotation)),
+                                    tolerance);
+        });
+        if (!repeat) return false;
+    }
+    for (size_t i = 1; i < n; ++i) cands[i].same_pose_as = 0;
+    return true;
+}
+
 }  // namespace
 
 Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::string& mode, const PoseJudge& support,
@@ -161,7 +197,7 @@ Orientation choose_orientation(const Mesh& mesh, const Params& p, const std::str
                      [](const auto& a, const auto& b) { return a.overhang_area < b.overhang_area - 1e-9; });
 
     size_t n_eval = std::min(evaluate_best, o.candidates.size());
-    if (!support || n_eval <= 1) {
+    if (!support || n_eval <= 1 || all_one_print(mesh, o.candidates, n_eval)) {
         o.rotation = o.candidates[0].rotation;
         o.decided_by = "overhang area";
         return o;

@@ -4,7 +4,8 @@
 // positions of Alexander et al. 1998), near-parallel ones merged, plus the six axis directions and
 // the input orientation. Each is scored by overhang area; the few best are then judged by the
 // support they really need (the caller builds the tree: `support_volume`), ties broken by fewer
-// model contacts, then lower height. `keep` keeps the input exactly; `RX,RY,RZ` applies a rotation.
+// model contacts, then lower height. Where those few are all one pose turned about the vertical (a
+// symmetric part: a cube's faces), none is judged: the first is kept. `keep` keeps the input exactly; `RX,RY,RZ` applies a rotation.
 #pragma once
 
 #include <functional>
@@ -45,6 +46,10 @@ struct OrientCandidate {
     double overhang_area = 0;
     bool evaluated = false;  // `support` was asked about it (its tree grown unless support.grown is false)
     PoseSupport support;
+    // Where the poses to judge are all one print (a symmetric part: a cube's six faces), the
+    // candidate each of the others is, turned about the vertical (orient/symmetry.hpp); then none
+    // is judged. Otherwise -1.
+    int same_pose_as = -1;
 };
 
 struct Orientation {

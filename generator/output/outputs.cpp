@@ -148,6 +148,7 @@ std::string report_json(const Result& r, const Job& job) {
             cj["support"] = {{"volume_mm3", c.support.volume}, {"model_contacts", c.support.model_contacts}, {"height_mm", c.support.height}};
         else if (c.evaluated)  // a lower pose with an empty tree was found: this one's was not grown
             cj["support"] = {{"needs_support", true}, {"tree_grown", false}, {"height_mm", c.support.height}};
+        if (c.same_pose_as >= 0) cj["same_pose_as"] = c.same_pose_as;  // that candidate turned about the vertical
         cj["chosen"] = i == r.orientation.chosen;
         cands.push_back(cj);
     }

@@ -8,6 +8,8 @@
 #include "core/errors.hpp"
 #include "mesh/repair.hpp"
 #include "orient/orient.hpp"
+#include "orient/symmetry.hpp"
+#include "query/model_query.hpp"
 #include "overhang/overhang.hpp"
 #include "pipeline/pipeline.hpp"
 #include "support.hpp"
@@ -260,6 +262,106 @@ TEST(Orient, RotationToDownTakesTheDirectionToMinusZ) {
         EXPECT_NEAR(r.y, 0, 1e-12);
         EXPECT_NEAR(r.z, -1, 1e-12);
     }
+}
+
+// A box with a closed cavity: a ceiling to support inside in every pose.
+Mesh hollow_box(Vec3 lo, Vec3 hi, Vec3 cavity_lo, Vec3 cavity_hi) {
+    Mesh m = box(lo, hi), cavity = box(cavity_lo, cavity_hi);
+    for (auto& f : cavity.faces) std::swap(f[1], f[2]);  // facing into the cavity
+    append(m, cavity);
+    return m;
+}
+
+// A 10 mm square prism 10 mm tall whose top is its bottom turned 20 degrees: each side is a bent
+// quad, split along the diagonal from its bottom's first corner, or (`one_other`) the last side
+// along the other diagonal.
+Mesh twisted_prism(bool one_other) {
+    Mesh m;
+    const Rotation twist = turn_about_z(20);
+    const Vec3 corners[4] = {{5, 5, 0}, {-5, 5, 0}, {-5, -5, 0}, {5, -5, 0}};  // counter-clockwise from above
+    for (const Vec3& c : corners) m.vertices.push_back(c);
+    for (const Vec3& c : corners) m.vertices.push_back(twist.apply(c) + Vec3{0, 0, 10});
+    m.faces = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}};
+    for (std::uint32_t i = 0; i < 4; ++i) {
+        const std::uint32_t b = i, b1 = (i + 1) % 4, t = 4 + i, t1 = 4 + (i + 1) % 4;
+        if (one_other && i == 3) m.faces.insert(m.faces.end(), {{b, b1, t}, {b1, t1, t}});
+        else m.faces.insert(m.faces.end(), {{b, b1, t1}, {b, t1, t}});
+    }
+    return m;
+}
+
+// Does `r` map the mesh onto itself, within 1e-4 mm?
+bool symmetric(const Mesh& m, const Rotation& r) {
+    const ModelQuery q(m);
+    return maps_onto_itself(q, surface_centroid(m), r, 1e-4);
+}
+
+TEST(Symmetry, QuarterTurnsMapACubeOntoItselfButNotABrickOnItsSide) {
+    Rotation about_x;  // a quarter turn about x: y -> z, z -> -y
+    about_x.m[1][1] = 0, about_x.m[1][2] = -1, about_x.m[2][1] = 1, about_x.m[2][2] = 0;
+    const Mesh cube = box({1000, 1000, 0}, {1010, 1010, 10});  // far from the origin: turned about its own middle
+    const Mesh brick = box({0, 0, 0}, {10, 10, 20});
+    EXPECT_TRUE(symmetric(cube, turn_about_z(90))) << "its square faces split along other diagonals";
+    EXPECT_TRUE(symmetric(cube, about_x));
+    EXPECT_TRUE(symmetric(brick, turn_about_z(90)));
+    EXPECT_TRUE(symmetric(brick, compose(about_x, about_x))) << "a half turn";
+    EXPECT_FALSE(symmetric(brick, about_x));
+    EXPECT_FALSE(symmetric(brick, turn_about_z(60)));
+    EXPECT_FALSE(symmetric(tee(), turn_about_z(90)));
+    EXPECT_TRUE(symmetric(tee(), turn_about_z(180)));
+    // The same vertices, the surface between them another: a square prism whose top is twisted
+    // 20 degrees, so its sides are not flat; each side splits along one diagonal or the other.
+    EXPECT_TRUE(symmetric(twisted_prism(false), turn_about_z(90)));
+    EXPECT_FALSE(symmetric(twisted_prism(true), turn_about_z(90))) << "one side bends the other way";
+    EXPECT_FALSE(symmetric(box({0, 0, 0}, {10, 10, 10.001}), about_x)) << "a micrometre taller";
+    // A cube with one face split in four about an extra vertex at its middle (CSG exports add
+    // vertices on one side only): the same surface, so still symmetric.
+    Mesh split = box({0, 0, 0}, {10, 10, 10});
+    split.vertices.push_back({5, 5, 10});
+    std::erase_if(split.faces, [](const Triangle& f) { return f == Triangle{4, 5, 6} || f == Triangle{5, 7, 6}; });
+    split.faces.insert(split.faces.end(), {{4, 5, 8}, {5, 7, 8}, {7, 6, 8}, {6, 4, 8}});
+    EXPECT_TRUE(symmetric(split, about_x));
+}
+
+// A hollow cube needs the same support on any face: its six axis poses are one print, and the
+// search grows no tree for them (the Menger sponge's six poses cost two seconds of its ten).
+TEST(Orient, APoseThatIsAnotherTurnedAboutTheVerticalGrowsNoTree) {
+    const Mesh cube = hollow_box({0, 0, 0}, {20, 20, 20}, {5, 5, 5}, {15, 15, 15});
+    int trees = 0;
+    const Orientation o = orient(cube, "auto", false, &trees);
+    EXPECT_EQ(trees, 0);
+    EXPECT_EQ(o.chosen, 0u);
+    EXPECT_EQ(o.decided_by, "overhang area");
+    ASSERT_GE(o.candidates.size(), 4u);
+    for (size_t i = 1; i < 4; ++i) EXPECT_EQ(o.candidates[i].same_pose_as, 0) << i;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) EXPECT_EQ(o.rotation.m[r][c], r == c ? 1 : 0) << "the input pose, first of its kind";
+}
+
+// A flat hollow box has two prints among its axis poses: on a broad face and on an edge. Then every
+// pose is judged, the turned copies too: each is one more placement of the sampling lattice.
+TEST(Orient, PosesOfMoreThanOnePrintAreAllJudged) {
+    const Mesh flat = hollow_box({0, 0, 0}, {30, 30, 10}, {5, 5, 3}, {25, 25, 7});
+    Params p;
+    std::atomic<int> trees{0};
+    const Orientation o = choose_orientation(
+        flat, p, "auto",
+        [&](const Mesh& rotated, const Rotation&, PoseQuestion) {
+            ++trees;
+            Placement pl;
+            Rotation id;
+            Mesh placed = place_on_bed(rotated, 1.0, id.m, pl);
+            auto s = build_supports(placed, sample_overhangs(placed, overhang_options(p)).samples, p);
+            return PoseSupport{true, s.volume, s.sized.tree.stats.model_contacts, bounding_box(placed).size().z};
+        },
+        6);
+    EXPECT_EQ(trees, 6);
+    ASSERT_EQ(o.candidates.size(), 6u);
+    for (const auto& c : o.candidates) {
+        EXPECT_TRUE(c.evaluated);
+        EXPECT_EQ(c.same_pose_as, -1);
+    }
+    EXPECT_NEAR(o.rotation.apply({0, 0, 1}).z, 0, 1e-9) << "on an edge: its cavity's roof is 4 mm across, not 20";
 }
 
 }  // namespace

@@ -1,0 +1,142 @@
+#include "orient/symmetry.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+namespace cs {
+namespace {
+
+// The mesh's vertices on a grid of `cell`-sized cubes: a point's near vertices lie in its cell or
+// a neighbour.
+class VertexGrid {
+public:
+    VertexGrid(const std::vector<Vec3>& points, double cell) : points_(points), cell_(cell) {
+        cells_.reserve(points.size());
+        for (std::uint32_t i = 0; i < points.size(); ++i) cells_[key(cell_of(points[i]))].push_back(i);
+    }
+    // The one vertex within `cell` of p, or -1 (none, or more than one).
+    std::int64_t vertex_at(const Vec3& p) const {
+        const auto c = cell_of(p);
+        std::int64_t found = -1;
+        for (std::int64_t dx = -1; dx <= 1; ++dx)
+            for (std::int64_t dy = -1; dy <= 1; ++dy)
+                for (std::int64_t dz = -1; dz <= 1; ++dz) {
+                    const auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
+                    if (it == cells_.end()) continue;
+                    for (std::uint32_t j : it->second) {
+                        const Vec3 d = points_[j] - p;
+                        if (dot(d, d) > cell_ * cell_) continue;
+                        if (found >= 0) return -1;
+                        found = j;
+                    }
+                }
+        return found;
+    }
+
+private:
+    std::array<std::int64_t, 3> cell_of(const Vec3& p) const {
+        return {static_cast<std::int64_t>(std::floor(p.x / cell_)), static_cast<std::int64_t>(std::floor(p.y / cell_)),
+                static_cast<std::int64_t>(std::floor(p.z / cell_))};
+    }
+    static std::uint64_t key(const std::array<std::int64_t, 3>& c) {
+        return static_cast<std::uint64_t>(c[0]) * 0x9E3779B97F4A7C15ULL ^ static_cast<std::uint64_t>(c[1]) * 0xC2B2AE3D27D4EB4FULL ^
+               static_cast<std::uint64_t>(c[2]) * 0x165667B19E3779F9ULL;
+    }
+    const std::vector<Vec3>& points_;
+    double cell_;
+    // Cells by a hash of their coordinates: two cells sharing a hash only pool their vertices,
+    // which the distance test then tells apart.
+    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+};
+
+// A face as its corners in increasing order, whatever the winding.
+Triangle sorted_corners(Triangle t) {
+    std::sort(t.begin(), t.end());
+    return t;
+}
+
+struct CornersHash {
+    std::size_t operator()(const Triangle& t) const {
+        return static_cast<std::size_t>((std::uint64_t(t[0]) * 0x9E3779B97F4A7C15ULL) ^
+                                        (std::uint64_t(t[1]) * 0xC2B2AE3D27D4EB4FULL) ^ (std::uint64_t(t[2]) * 0x165667B19E3779F9ULL));
+    }
+};
+
+}  // namespace
+
+Rotation compose(const Rotation& a, const Rotation& b) {
+    Rotation r;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) r.m[i][j] = a.m[i][0] * b.m[0][j] + a.m[i][1] * b.m[1][j] + a.m[i][2] * b.m[2][j];
+    return r;
+}
+
+Rotation transposed(const Rotation& r) {
+    Rotation t;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) t.m[i][j] = r.m[j][i];
+    return t;
+}
+
+Rotation turn_about_z(int degrees) {
+    const int d = ((degrees % 360) + 360) % 360;
+    double c, s;
+    switch (d) {  // exact where it can be: a cube's poses then differ by signed permutations only
+        case 0: c = 1, s = 0; break;
+        case 90: c = 0, s = 1; break;
+        case 180: c = -1, s = 0; break;
+        case 270: c = 0, s = -1; break;
+        default: c = std::cos(deg_to_rad(d)), s = std::sin(deg_to_rad(d));
+    }
+    Rotation r;
+    r.m[0][0] = c, r.m[0][1] = -s, r.m[1][0] = s, r.m[1][1] = c;
+    return r;
+}
+
+Vec3 surface_centroid(const Mesh& mesh) {
+    Vec3 sum{0, 0, 0};
+    double area = 0;
+    for (const auto& f : mesh.faces) {
+        const double a = norm(face_normal_unnormalized(mesh, f));
+        sum = sum + (mesh.vertices[f[0]] + mesh.vertices[f[1]] + mesh.vertices[f[2]]) * (a / 3);
+        area += a;
+    }
+    return area > 0 ? sum / area : sum;
+}
+
+bool maps_onto_itself(const ModelQuery& surface, const Vec3& centroid, const Rotation& q, double tolerance) {
+    const Mesh& mesh = surface.mesh();
+    if (mesh.faces.empty() || !(tolerance > 0)) return false;
+    const double tol2 = tolerance * tolerance;
+    auto turned = [&](const Vec3& p) { return q.apply(p - centroid) + centroid; };
+    // Most turned vertices land on a vertex, most turned faces on a face (a symmetric part is
+    // mostly triangulated symmetrically): those are on the surface without asking the index.
+    const VertexGrid grid(mesh.vertices, tolerance);
+    std::vector<std::int64_t> lands_on(mesh.vertices.size());
+    // The vertices first: on a part without the symmetry the first few fail.
+    for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+        const Vec3 p = turned(mesh.vertices[i]);
+        lands_on[i] = grid.vertex_at(p);
+        if (lands_on[i] < 0 && surface.squared_distance(p) > tol2) return false;
+    }
+    std::unordered_set<Triangle, CornersHash> faces;
+    faces.reserve(mesh.faces.size());
+    for (const auto& f : mesh.faces) faces.insert(sorted_corners(f));
+    for (const auto& f : mesh.faces) {
+        const std::int64_t a = lands_on[f[0]], b = lands_on[f[1]], c = lands_on[f[2]];
+        // A face whose corners land on a face's corners is that face.
+        if (a >= 0 && b >= 0 && c >= 0 &&
+            faces.contains(sorted_corners({static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(c)})))
+            continue;
+        if (surface.squared_distance(turned((mesh.vertices[f[0]] + mesh.vertices[f[1]] + mesh.vertices[f[2]]) / 3)) > tol2)
+            return false;
+    }
+    return true;
+}
+
+}  // namespace cs
