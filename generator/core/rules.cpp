@@ -68,6 +68,8 @@ double surface_rise(double run, double critical_angle_deg) { return run * std::t
 
 double touching_space(const Params& p) { return 2 * p.gap + p.layer_height; }
 
+bool rests_at(double air, double space) { return air <= space - kHeightRounding; }
+
 double tip_side_clearance(const Params& p) { return 0.5 * p.line_width; }
 
 double contact_tolerance(const Params& p) {

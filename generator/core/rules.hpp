@@ -78,6 +78,17 @@ double joint_overlap(const Params& p);
 // on what is below it (two z gaps and a layer).
 double touching_space(const Params& p);
 
+// How far a height in the model.stl a slicer (and `check`) reads may lie from the generator's own:
+// float32 keeps 24 bits, so a corner up to 150 mm from the origin moves by 1e-5 mm at most.
+constexpr double kHeightRounding = 1e-5;
+
+// Does an overhang point with `air` mm of free fall under it rest on what is below, `space` being
+// touching_space? Only where it does beyond kHeightRounding: at the threshold itself the float32
+// file decides, and a flange drawn exactly 2 gaps + 1 layer over the bed (bearing_block at 0.6x:
+// 0.6 mm) lies 0.6000000238 mm up in it, where `check` finds nothing resting. The sampling
+// (overhang/) and the tree's leaves (tree/) both ask this.
+bool rests_at(double air, double space);
+
 // How far a tip's top keeps, sideways, from a wall of the model beside it in its own layer: half
 // a line width, PrusaSlicer's default xy spacing for its own supports (50 % of a line). Nearer,
 // the tip's outer line prints against the wall's and fuses with it. The Cura profile we write

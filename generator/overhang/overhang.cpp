@@ -322,7 +322,7 @@ bool material_right_below(const ModelQuery& model, const Vec3& x) { return model
 
 bool rests_on_material(const ModelQuery& model, const Vec3& x, double touching_space) {
     if (material_right_below(model, x)) return true;  // overlapping shells: not a surface of the print
-    return air_below(model, x) <= touching_space;
+    return rests_at(air_below(model, x), touching_space);
 }
 
 

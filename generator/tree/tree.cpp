@@ -117,7 +117,7 @@ private:
             }
             // The air below it, as the sampling judges what rests on material (overhang.hpp).
             const double free = air_below(model_, s.p);
-            if (free <= touching_space(p_)) {
+            if (rests_at(free, touching_space(p_))) {
                 ++t_.stats.touching;
                 continue;
             }

@@ -416,6 +416,19 @@ TEST(LeanSampling, PointsRestingOnMaterialNeedNoExtras) {
     EXPECT_GT(without.samples.size(), with.samples.size());
 }
 
+// An underside exactly touching space (2 gaps + 1 layer, 0.6 mm) over the bed does not rest: the
+// model.stl a slicer and `check` read is float32, where 0.6 lies 0.6000000238 mm up (bearing_block
+// at 0.6x: its flange's lowest line left 1 mm2 beyond reach). A hundredth lower, it rests.
+TEST(LeanSampling, AnUndersideExactlyTouchingSpaceOverTheBedDoesNotRest) {
+    const OverhangOptions o = default_options();
+    ASSERT_NEAR(o.touching_space, 0.6, 1e-12);
+    for (const double z : {0.6, 0.59}) {
+        const Mesh slab = box({0, 0, z}, {10, 10, 3});
+        const ModelQuery q(slab);
+        EXPECT_EQ(rests_on_material(q, {5, 5, z}, o.touching_space), z < 0.6) << z;
+    }
+}
+
 TEST(LeanSampling, PointsInTheAirAreCoveredBySamplesThatGetAContact) {
     // The T with a block under one wing, 0.4 mm below the plate (within touching space): the
     // points over the block rest on it. Every other point has within reach a sample that does not

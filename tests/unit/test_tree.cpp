@@ -222,6 +222,18 @@ TEST(TreeHelpers, TouchingSpaceAndContactTolerance) {
     EXPECT_GT(contact_tolerance(p), p.gap);
 }
 
+// The leaves judge what rests as the sampling does (core/rules.hpp rests_at): a slab exactly
+// touching space over the bed is no touching overhang (the float32 file puts it a hair higher,
+// where `check` finds nothing resting); a hundredth lower it is.
+TEST(TreeHelpers, ASlabExactlyTouchingSpaceOverTheBedIsNotTouching) {
+    Params p;
+    for (const double z : {touching_space(p), touching_space(p) - 0.01}) {
+        const auto g = grow(cs::test::box({0, 0, z}, {10, 10, 3}), p);
+        ASSERT_FALSE(g->samples.samples.empty());
+        EXPECT_EQ(g->tree.stats.touching == 0, z == touching_space(p)) << z << ": " << g->tree.stats.touching << " touching";
+    }
+}
+
 TEST(TreeHelpers, StrutIsClearAwayFromTheModelNotThroughIt) {
     Mesh m = cs::test::box({0, 0, 0}, {10, 10, 10});
     ModelQuery q(m);
