@@ -365,7 +365,10 @@ INSTANTIATE_TEST_SUITE_P(Bench, ValidationPartAtAnotherSize,
 //   a 45 degree face at exactly the preset's critical angle, printable, which the judge read from
 //   the float32 model.stl a hair past it (33 and 200 mm2);
 // - molecule under prusa-mk4-petg: an inside corner beside a face that rises from the edge, which
-//   carries nothing (0.16 mm2).
+//   carries nothing (0.16 mm2);
+// - bearing_block at 0.6x: its flange's lowest line exactly 2 gaps + 1 layer (0.6 mm) over the bed,
+//   which the generator let rest there and the judge, reading 0.6000000238 from the float32 file,
+//   did not (1.04 mm2).
 struct PresetRun {
     std::string input;  // under the source tree
     double scale;
@@ -389,7 +392,8 @@ INSTANTIATE_TEST_SUITE_P(Bench, AtAnotherSizeAndPreset,
                          ::testing::Values(PresetRun{"examples/models/molecule.stl", 1.5, "generic-0.4"},
                                            PresetRun{"bench/validation/wedge_ledge.stl", 0.8, "ender3-pla"},
                                            PresetRun{"bench/validation/shelter_roof.stl", 1.3, "prusa-mk4-petg"},
-                                           PresetRun{"examples/models/molecule.stl", 1.0, "prusa-mk4-petg"}),
+                                           PresetRun{"examples/models/molecule.stl", 1.0, "prusa-mk4-petg"},
+                                           PresetRun{"bench/validation/bearing_block.stl", 0.6, "generic-0.4"}),
                          [](const auto& info) {
                              std::string name = std::filesystem::path(info.param.input).stem().string() + "_" +
                                                 std::to_string(static_cast<int>(info.param.scale * 10)) + "_" + info.param.preset;
