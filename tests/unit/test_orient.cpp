@@ -323,9 +323,10 @@ TEST(Symmetry, QuarterTurnsMapACubeOntoItselfButNotABrickOnItsSide) {
     EXPECT_TRUE(symmetric(split, about_x));
 }
 
-// A hollow cube needs the same support on any face: its six axis poses are one print, and the
-// search grows no tree for them (the Menger sponge's six poses cost two seconds of its ten).
-TEST(Orient, APoseThatIsAnotherTurnedAboutTheVerticalGrowsNoTree) {
+// A hollow cube needs the same support on any face: its best poses are all one print turned about
+// the vertical, and the search grows no tree for them (the Menger sponge's cost two seconds of its
+// ten).
+TEST(Orient, BestPosesThatAreAllOnePrintGrowNoTree) {
     const Mesh cube = hollow_box({0, 0, 0}, {20, 20, 20}, {5, 5, 5}, {15, 15, 15});
     int trees = 0;
     const Orientation o = orient(cube, "auto", false, &trees);
