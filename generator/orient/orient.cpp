@@ -147,14 +147,10 @@ bool all_one_print(const Mesh& mesh, std::vector<OrientCandidate>& cands, size_t
     const double area = cands[0].overhang_area;
     for (size_t i = 1; i < n; ++i)
         if (std::abs(cands[i].overhang_area - area) > 1e-6 * std::max(area, cands[i].overhang_area) + 1e-9) return false;
-    const ModelQuery surface(mesh);
-    const Vec3 centroid = surface_centroid(mesh);
-    const double tolerance = kSymmetryTolerance * norm(bounding_box(mesh).size());
+    const SurfaceSymmetry symmetry(mesh, kSymmetryTolerance * norm(bounding_box(mesh).size()));
     for (size_t i = 1; i < n; ++i) {
         const bool repeat = std::any_of(std::begin(kTurnsTried), std::end(kTurnsTried), [&](int degrees) {
-            return maps_onto_itself(surface, centroid,
-                                    compose(transposed(cands[0].rotation), compose(turn_about_z(degrees), cands[i].rotation)),
-                                    tolerance);
+            return symmetry.maps_onto_itself(compose(transposed(cands[0].rotation), compose(turn_about_z(degrees), cands[i].rotation)));
         });
         if (!repeat) return false;
     }

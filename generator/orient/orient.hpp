@@ -5,7 +5,8 @@
 // the input orientation. Each is scored by overhang area; the few best are then judged by the
 // support they really need (the caller builds the tree: `support_volume`), ties broken by fewer
 // model contacts, then lower height. Where those few are all one pose turned about the vertical (a
-// symmetric part: a cube's faces), none is judged: the first is kept. `keep` keeps the input exactly; `RX,RY,RZ` applies a rotation.
+// symmetric part: a cube's faces), none is judged: the first is kept. `keep` keeps the input
+// exactly; `RX,RY,RZ` applies a rotation.
 #pragma once
 
 #include <functional>

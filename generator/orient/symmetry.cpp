@@ -8,6 +8,8 @@
 #include <unordered_set>
 #include <vector>
 
+#include "query/model_query.hpp"
+
 namespace cs {
 namespace {
 
@@ -98,6 +100,8 @@ Rotation turn_about_z(int degrees) {
     return r;
 }
 
+namespace {
+
 Vec3 surface_centroid(const Mesh& mesh) {
     Vec3 sum{0, 0, 0};
     double area = 0;
@@ -109,31 +113,47 @@ Vec3 surface_centroid(const Mesh& mesh) {
     return area > 0 ? sum / area : sum;
 }
 
-bool maps_onto_itself(const ModelQuery& surface, const Vec3& centroid, const Rotation& q, double tolerance) {
-    const Mesh& mesh = surface.mesh();
-    if (mesh.faces.empty() || !(tolerance > 0)) return false;
-    const double tol2 = tolerance * tolerance;
-    auto turned = [&](const Vec3& p) { return q.apply(p - centroid) + centroid; };
+}  // namespace
+
+struct SurfaceSymmetry::Index {
+    Index(const Mesh& m, double tol) : mesh(m), surface(m), centroid(surface_centroid(m)), tolerance(tol), grid(m.vertices, tol) {
+        faces.reserve(m.faces.size());
+        for (const auto& f : m.faces) faces.insert(sorted_corners(f));
+    }
+    const Mesh& mesh;
+    const ModelQuery surface;
+    const Vec3 centroid;
+    const double tolerance;
     // Most turned vertices land on a vertex, most turned faces on a face (a symmetric part is
-    // mostly triangulated symmetrically): those are on the surface without asking the index.
-    const VertexGrid grid(mesh.vertices, tolerance);
+    // mostly triangulated symmetrically): those are on the surface without asking `surface`.
+    const VertexGrid grid;
+    std::unordered_set<Triangle, CornersHash> faces;
+};
+
+SurfaceSymmetry::SurfaceSymmetry(const Mesh& mesh, double tolerance) : index_(std::make_unique<const Index>(mesh, tolerance)) {}
+
+SurfaceSymmetry::~SurfaceSymmetry() = default;
+
+bool SurfaceSymmetry::maps_onto_itself(const Rotation& q) const {
+    const Index& x = *index_;
+    const Mesh& mesh = x.mesh;
+    if (mesh.faces.empty() || !(x.tolerance > 0)) return false;
+    const double tol2 = x.tolerance * x.tolerance;
+    auto turned = [&](const Vec3& p) { return q.apply(p - x.centroid) + x.centroid; };
     std::vector<std::int64_t> lands_on(mesh.vertices.size());
     // The vertices first: on a part without the symmetry the first few fail.
     for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
         const Vec3 p = turned(mesh.vertices[i]);
-        lands_on[i] = grid.vertex_at(p);
-        if (lands_on[i] < 0 && surface.squared_distance(p) > tol2) return false;
+        lands_on[i] = x.grid.vertex_at(p);
+        if (lands_on[i] < 0 && x.surface.squared_distance(p) > tol2) return false;
     }
-    std::unordered_set<Triangle, CornersHash> faces;
-    faces.reserve(mesh.faces.size());
-    for (const auto& f : mesh.faces) faces.insert(sorted_corners(f));
     for (const auto& f : mesh.faces) {
         const std::int64_t a = lands_on[f[0]], b = lands_on[f[1]], c = lands_on[f[2]];
         // A face whose corners land on a face's corners is that face.
         if (a >= 0 && b >= 0 && c >= 0 &&
-            faces.contains(sorted_corners({static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(c)})))
+            x.faces.contains(sorted_corners({static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(c)})))
             continue;
-        if (surface.squared_distance(turned((mesh.vertices[f[0]] + mesh.vertices[f[1]] + mesh.vertices[f[2]]) / 3)) > tol2)
+        if (x.surface.squared_distance(turned((mesh.vertices[f[0]] + mesh.vertices[f[1]] + mesh.vertices[f[2]]) / 3)) > tol2)
             return false;
     }
     return true;

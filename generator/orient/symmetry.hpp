@@ -6,27 +6,38 @@
 // differently on the two (a cube's faces down: coarse trees up to 6 % apart).
 #pragma once
 
+#include <memory>
+
 #include "core/geometry.hpp"
 #include "orient/orient.hpp"
-#include "query/model_query.hpp"
 
 namespace cs {
 
-// The centre of the surface: its triangles' centroids weighted by area. Any symmetry of the surface
-// keeps it in place, however the surface is split into triangles.
-Vec3 surface_centroid(const Mesh& mesh);
+// A model's surface, indexed once for the question whether a rotation maps it onto itself.
+class SurfaceSymmetry {
+public:
+    // `mesh` must outlive this. `tolerance`: how far (mm) a turned point may lie from the surface.
+    SurfaceSymmetry(const Mesh& mesh, double tolerance);
+    ~SurfaceSymmetry();
+    SurfaceSymmetry(const SurfaceSymmetry&) = delete;
+    SurfaceSymmetry& operator=(const SurfaceSymmetry&) = delete;
 
-// True when `q`, turning about `centroid` (surface_centroid of the indexed mesh), takes every vertex
-// and every triangle's centroid of the model to within `tolerance` (mm) of its surface. The surface
-// is compared, not the triangle lists: a symmetric part's triangulation need not be symmetric (a
-// CSG export splits faces along one diagonal, or adds vertices along the edges on one side only),
-// and the print does not see it. A turned copy lying on a closed surface of the same area is that
-// surface. False at the first point off it: a part without the symmetry costs a few questions.
-//
-// Example: a cube is mapped onto itself by a quarter turn about any axis:
-//   const ModelQuery q(cube);
-//   maps_onto_itself(q, surface_centroid(cube), turn_about_z(90), 1e-6);  // true
-bool maps_onto_itself(const ModelQuery& surface, const Vec3& centroid, const Rotation& q, double tolerance);
+    // True when `q`, turning about the surface's centroid (its triangles' centroids weighted by
+    // area: any symmetry keeps it in place, however the surface is split into triangles), takes
+    // every vertex and every triangle's centroid of the model to within the tolerance of its
+    // surface. The surface is compared, not the triangle lists: a symmetric part's triangulation
+    // need not be symmetric (a CSG export splits faces along one diagonal, or adds vertices along
+    // the edges on one side only), and the print does not see it. False at the first point off
+    // it: a part without the symmetry costs a few questions.
+    //
+    // Example: a cube is mapped onto itself by a quarter turn about any axis:
+    //   SurfaceSymmetry(cube, 1e-6).maps_onto_itself(turn_about_z(90));  // true
+    bool maps_onto_itself(const Rotation& q) const;
+
+private:
+    struct Index;
+    std::unique_ptr<const Index> index_;
+};
 
 // a * b.
 Rotation compose(const Rotation& a, const Rotation& b);

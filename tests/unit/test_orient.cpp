@@ -9,7 +9,6 @@
 #include "mesh/repair.hpp"
 #include "orient/orient.hpp"
 #include "orient/symmetry.hpp"
-#include "query/model_query.hpp"
 #include "overhang/overhang.hpp"
 #include "pipeline/pipeline.hpp"
 #include "support.hpp"
@@ -291,10 +290,7 @@ Mesh twisted_prism(bool one_other) {
 }
 
 // Does `r` map the mesh onto itself, within 1e-4 mm?
-bool symmetric(const Mesh& m, const Rotation& r) {
-    const ModelQuery q(m);
-    return maps_onto_itself(q, surface_centroid(m), r, 1e-4);
-}
+bool symmetric(const Mesh& m, const Rotation& r) { return SurfaceSymmetry(m, 1e-4).maps_onto_itself(r); }
 
 TEST(Symmetry, QuarterTurnsMapACubeOntoItselfButNotABrickOnItsSide) {
     Rotation about_x;  // a quarter turn about x: y -> z, z -> -y
