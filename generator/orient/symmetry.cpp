@@ -1,60 +1,31 @@
 #include "orient/symmetry.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
+#include "core/xy_grid.hpp"
 #include "query/model_query.hpp"
 
 namespace cs {
 namespace {
 
-// The mesh's vertices on a grid of `cell`-sized cubes: a point's near vertices lie in its cell or
-// a neighbour.
-class VertexGrid {
-public:
-    VertexGrid(const std::vector<Vec3>& points, double cell) : points_(points), cell_(cell) {
-        cells_.reserve(points.size());
-        for (std::uint32_t i = 0; i < points.size(); ++i) cells_[key(cell_of(points[i]))].push_back(i);
-    }
-    // The one vertex within `cell` of p, or -1 (none, or more than one).
-    std::int64_t vertex_at(const Vec3& p) const {
-        const auto c = cell_of(p);
-        std::int64_t found = -1;
-        for (std::int64_t dx = -1; dx <= 1; ++dx)
-            for (std::int64_t dy = -1; dy <= 1; ++dy)
-                for (std::int64_t dz = -1; dz <= 1; ++dz) {
-                    const auto it = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
-                    if (it == cells_.end()) continue;
-                    for (std::uint32_t j : it->second) {
-                        const Vec3 d = points_[j] - p;
-                        if (dot(d, d) > cell_ * cell_) continue;
-                        if (found >= 0) return -1;
-                        found = j;
-                    }
-                }
-        return found;
-    }
-
-private:
-    std::array<std::int64_t, 3> cell_of(const Vec3& p) const {
-        return {static_cast<std::int64_t>(std::floor(p.x / cell_)), static_cast<std::int64_t>(std::floor(p.y / cell_)),
-                static_cast<std::int64_t>(std::floor(p.z / cell_))};
-    }
-    static std::uint64_t key(const std::array<std::int64_t, 3>& c) {
-        return static_cast<std::uint64_t>(c[0]) * 0x9E3779B97F4A7C15ULL ^ static_cast<std::uint64_t>(c[1]) * 0xC2B2AE3D27D4EB4FULL ^
-               static_cast<std::uint64_t>(c[2]) * 0x165667B19E3779F9ULL;
-    }
-    const std::vector<Vec3>& points_;
-    double cell_;
-    // Cells by a hash of their coordinates: two cells sharing a hash only pool their vertices,
-    // which the distance test then tells apart.
-    std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
-};
+// The one vertex within `tolerance` of p, or -1 (none, or more than one). `grid` files the vertices
+// by their tolerance-sized cell seen from above: p's match lies in its cell or a neighbour.
+std::int64_t vertex_at(const XyGrid<std::uint32_t>& grid, const std::vector<Vec3>& vertices, const Vec3& p, double tolerance) {
+    std::int64_t found = -1;
+    bool ambiguous = false;
+    grid.visit_near(p, 1, [&](std::uint32_t j) {
+        const Vec3 d = vertices[j] - p;
+        if (dot(d, d) > tolerance * tolerance) return false;
+        ambiguous = found >= 0;
+        found = j;
+        return ambiguous;
+    });
+    return ambiguous ? -1 : found;
+}
 
 // A face as its corners in increasing order, whatever the winding.
 Triangle sorted_corners(Triangle t) {
@@ -116,7 +87,8 @@ Vec3 surface_centroid(const Mesh& mesh) {
 }  // namespace
 
 struct SurfaceSymmetry::Index {
-    Index(const Mesh& m, double tol) : mesh(m), surface(m), centroid(surface_centroid(m)), tolerance(tol), grid(m.vertices, tol) {
+    Index(const Mesh& m, double tol) : mesh(m), surface(m), centroid(surface_centroid(m)), tolerance(tol), grid(tol) {
+        for (std::uint32_t i = 0; i < m.vertices.size(); ++i) grid.insert(m.vertices[i], i);
         faces.reserve(m.faces.size());
         for (const auto& f : m.faces) faces.insert(sorted_corners(f));
     }
@@ -126,7 +98,7 @@ struct SurfaceSymmetry::Index {
     const double tolerance;
     // Most turned vertices land on a vertex, most turned faces on a face (a symmetric part is
     // mostly triangulated symmetrically): those are on the surface without asking `surface`.
-    const VertexGrid grid;
+    XyGrid<std::uint32_t> grid;
     std::unordered_set<Triangle, CornersHash> faces;
 };
 
@@ -144,7 +116,7 @@ bool SurfaceSymmetry::maps_onto_itself(const Rotation& q) const {
     // The vertices first: on a part without the symmetry the first few fail.
     for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
         const Vec3 p = turned(mesh.vertices[i]);
-        lands_on[i] = x.grid.vertex_at(p);
+        lands_on[i] = vertex_at(x.grid, mesh.vertices, p, x.tolerance);
         if (lands_on[i] < 0 && x.surface.squared_distance(p) > tol2) return false;
     }
     for (const auto& f : mesh.faces) {
